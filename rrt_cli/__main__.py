@@ -1,0 +1,3 @@
+from rrt_cli.cli import entry_point
+
+entry_point()

@@ -1,0 +1,151 @@
+"""``rrt_cli``: read a `.sw` problem on stdin, print a trajectory and the motion tree.
+
+Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution within the
+limits (or the goal is certainly unreachable).
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+
+from planning_core.plan_text import format_plan
+from planning_core.problem_text import ProblemFormatError, parse_problem
+from planning_core.vehicles import Vehicle
+from rrt_cli.planners import PLANNERS
+from rrt_cli.planners.base import StopCondition
+
+EXIT_SOLVED = 0
+EXIT_USAGE = 2
+EXIT_NO_SOLUTION = 3
+DEFAULT_TIME_LIMIT = 30.0
+DEFAULT_ITERATIONS = 5_000_000
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one usage line and one error line, exit 2
+        self.print_usage(sys.stderr)
+        sys.stderr.write(f"rrt_cli: error: {message}\n")
+        raise SystemExit(EXIT_USAGE)
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a positive finite number")
+    return value
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be positive")
+    return value
+
+
+def _seed(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="run.sh",
+        description="Plan on a grid map read from stdin (the .sw format); print the "
+                    "trajectory and the motion tree on stdout.",
+        epilog="Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution "
+               "within the limits.")
+    vehicle = parser.add_argument_group("vehicle (default: point vehicle)")
+    vehicle.add_argument("-ugrad", action="store_true",
+                         help="point vehicle <x, y> moving straight (the default)")
+    vehicle.add_argument("-grad", action="store_true",
+                         help="spaceship <x, y, dx, dy> with thrust <theta, s>")
+    vehicle.add_argument("-left", action="store_true",
+                         help="spaceship that only thrusts ahead or left (implies -grad)")
+    parser.add_argument("-planner", default="rrt", choices=sorted(PLANNERS),
+                        help="planning algorithm (default: rrt)")
+    parser.add_argument("-seed", type=_seed, default=None,
+                        help="random seed; the same seed gives the same output byte for byte")
+    parser.add_argument("-time", type=_positive_float, default=DEFAULT_TIME_LIMIT,
+                        metavar="S", help=f"time limit in seconds (default: {DEFAULT_TIME_LIMIT:g})")
+    parser.add_argument("-iterations", type=_positive_int, default=DEFAULT_ITERATIONS,
+                        metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")
+    parser.add_argument("-stats", action="store_true",
+                        help="print one line of statistics on stderr")
+    return parser
+
+
+def choose_vehicle(args: argparse.Namespace) -> Vehicle:
+    if args.ugrad and (args.grad or args.left):
+        raise ValueError("-ugrad cannot be combined with -grad or -left")
+    if args.left:
+        return Vehicle.LEFT_SPACESHIP
+    if args.grad:
+        return Vehicle.SPACESHIP
+    return Vehicle.POINT
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        vehicle = choose_vehicle(args)
+    except ValueError as error:
+        parser.error(str(error))
+    entry = PLANNERS[args.planner]
+    if vehicle not in entry.vehicles:
+        sys.stderr.write(f"rrt_cli: error: planner {args.planner!r} does not support the "
+                         f"{vehicle.value} vehicle\n")
+        return EXIT_USAGE
+
+    raw = sys.stdin.buffer.read()
+    try:
+        problem = parse_problem(raw.decode("utf-8", errors="replace"))
+    except ProblemFormatError as error:
+        sys.stderr.write(f"rrt_cli: bad problem: {error}\n")
+        return EXIT_USAGE
+
+    seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)
+    rng = random.Random(seed)
+    planner = entry.load()
+    stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
+    result = planner.solve(problem, vehicle, stop, rng, planner.Params())
+    stats = result.stats
+    if args.stats:
+        sys.stderr.write(f"rrt_cli: {result.status.value}; planner {args.planner}, seed {seed}, "
+                         f"{stats.iterations} iterations, {stats.tree_nodes} tree nodes, "
+                         f"{stats.planning_seconds:.6f} s planning\n")
+    if not result.solved:
+        detail = f": {result.message}" if result.message else ""
+        sys.stderr.write(f"rrt_cli: no solution ({result.status.value}{detail}) after "
+                         f"{stats.iterations} iterations, {stats.planning_seconds:.2f} s "
+                         f"(seed {seed})\n")
+        return EXIT_NO_SOLUTION
+    sys.stdout.write(format_plan(result.trajectory, result.tree))
+    sys.stdout.flush()
+    return EXIT_SOLVED
+
+
+def entry_point() -> None:
+    try:
+        status = main()
+    except KeyboardInterrupt:
+        status = 130
+    except BrokenPipeError:
+        # The reader went away (e.g. `| head`); nothing left to say.
+        sys.stderr.close()
+        status = 1
+    raise SystemExit(status)
+
+
+if __name__ == "__main__":
+    entry_point()

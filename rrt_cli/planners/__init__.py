@@ -1,0 +1,32 @@
+"""Planners, by the name ``-planner`` takes.
+
+Each planner module has a frozen params dataclass and
+``solve(problem, vehicle, stop, rng, params) -> PlanResult``. Modules are
+imported on first use so that start-up only pays for the planner it runs.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+
+from planning_core.vehicles import Vehicle
+
+_POINT = frozenset({Vehicle.POINT})
+_SPACESHIPS = frozenset({Vehicle.SPACESHIP, Vehicle.LEFT_SPACESHIP})
+_ALL = _POINT | _SPACESHIPS
+
+
+@dataclass(frozen=True)
+class PlannerEntry:
+    module: str
+    vehicles: frozenset
+    summary: str
+
+    def load(self):
+        return importlib.import_module(self.module)
+
+
+PLANNERS: dict[str, PlannerEntry] = {
+    "rrt": PlannerEntry("rrt_cli.planners.rrt", _ALL, "RRT, the course's reference planner"),
+}
