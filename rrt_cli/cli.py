@@ -80,7 +80,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-iterations", type=_positive_int, default=DEFAULT_ITERATIONS,
                         metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")
     parser.add_argument("-stats", action="store_true",
-                        help="print one line of statistics on stderr")
+                        help="print one line of key=value statistics on stderr")
     return parser
 
 
@@ -121,9 +121,11 @@ def main(argv: list[str] | None = None) -> int:
     result = planner.solve(problem, vehicle, stop, rng, planner.Params())
     stats = result.stats
     if args.stats:
-        sys.stderr.write(f"rrt_cli: {result.status.value}; planner {args.planner}, seed {seed}, "
-                         f"{stats.iterations} iterations, {stats.tree_nodes} tree nodes, "
-                         f"{stats.planning_seconds:.6f} s planning\n")
+        # One key=value line, stable for scripts (the benchmark harness parses it).
+        sys.stderr.write(f"rrt_cli stats: status={result.status.name.lower()} "
+                         f"planner={args.planner} vehicle={vehicle.value} seed={seed} "
+                         f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
+                         f"planning_seconds={stats.planning_seconds:.6f}\n")
     if not result.solved:
         detail = f": {result.message}" if result.message else ""
         sys.stderr.write(f"rrt_cli: no solution ({result.status.value}{detail}) after "
