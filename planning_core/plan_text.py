@@ -93,7 +93,7 @@ def parse_plan(text: str, trajectory_fields: int, tree_fields: int) -> PlanText:
     while index < len(lines) and not lines[index].strip():
         index += 1
     if index >= len(lines):
-        raise PlanParseError(index + 1, "output is empty: expected the trajectory count")
+        raise PlanParseError(1, "output is empty: expected the trajectory count")
     n = _parse_count(lines[index], index + 1, "trajectory", len(lines) - index - 1)
     index += 1
     trajectory_first = index + 1

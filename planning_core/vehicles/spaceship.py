@@ -32,10 +32,11 @@ def integrate(state: State, control: Control,
     x, y, dx, dy = state
     theta, thrust = control
     step = DT * thrust
+    atan2, cos, sin = math.atan2, math.cos, math.sin  # locals: this loop is the hot path
     for _ in range(SLICES):
-        a = math.atan2(dy, dx) + theta
-        dx = dx + step * math.cos(a)
-        dy = dy + step * math.sin(a)
+        a = atan2(dy, dx) + theta
+        dx = dx + step * cos(a)
+        dy = dy + step * sin(a)
         x = x + DT * dx
         y = y + DT * dy
         if blocked is not None and (not (0.0 <= x < width and 0.0 <= y < height)

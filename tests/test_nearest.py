@@ -1,0 +1,33 @@
+"""The quadtree's nearest neighbour equals a linear scan's, for any clustering."""
+
+import random
+
+import pytest
+
+from rrt_cli.nearest import LinearNearest, QuadtreeNearest
+
+
+@pytest.mark.parametrize("width,height,spread,duplicates", [
+    (10, 9, 1.0, False), (500, 500, 0.2, False), (3, 300, 1.0, True), (10, 10, 0.01, True),
+])
+def test_matches_linear_scan(width, height, spread, duplicates):
+    rng = random.Random(width * 7 + height)
+    tree, scan = QuadtreeNearest(width, height), LinearNearest()
+    for i in range(3000):
+        if duplicates and i % 5 == 0 and i:
+            x, y = tree.xs[-1], tree.ys[-1]
+        else:
+            x, y = rng.random() * width * spread, rng.random() * height * spread
+        assert tree.add(x, y) == scan.add(x, y) == i
+        if i % 3 == 0:
+            qx, qy = rng.random() * width, rng.random() * height
+            a, b = tree.nearest(qx, qy), scan.nearest(qx, qy)
+            da = (tree.xs[a] - qx) ** 2 + (tree.ys[a] - qy) ** 2
+            db = (scan.xs[b] - qx) ** 2 + (scan.ys[b] - qy) ** 2
+            assert da == db
+    assert len(tree) == 3000
+
+
+def test_empty_structure_raises():
+    with pytest.raises(ValueError):
+        QuadtreeNearest(5, 5).nearest(1.0, 1.0)

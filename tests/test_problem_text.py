@@ -1,0 +1,101 @@
+"""The `.sw` reader: lenient forms load, every bad form is one located error."""
+
+import math
+
+import pytest
+
+from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
+from tests.conftest import COURSE_PROBLEMS, run_planner
+
+SPACE0 = "4\n3\n____\n__#_\n___#\n0.1\n1.54\n3.8\n1.1\n"
+
+
+def test_reads_the_spec_example_with_bottom_row_first():
+    problem = parse_problem(SPACE0)
+    assert (problem.width, problem.height) == (4, 3)
+    assert problem.start == (0.1, 1.54) and problem.goal == (3.8, 1.1)
+    # Text row 3 (bottom, y in [0,1)) is "___#": cell (3, 0) blocked.
+    assert problem.is_blocked_cell(3, 0)
+    assert problem.is_blocked_cell(2, 1)
+    assert not problem.is_blocked_cell(2, 2)
+    assert problem.point_in_collision(3.5, 0.5)
+    assert not problem.point_in_collision(3.5, 1.5)
+    assert problem.point_in_collision(4.0, 1.0)   # x = W is outside
+    assert problem.point_in_collision(-1e-9, 1.0)
+
+
+@pytest.mark.parametrize("text", [
+    "4 3\n____\n__#_\n___#\n0.1 1.54\n3.8 1.1\n",                       # pairs on a line
+    "4 3\r\n____\r\n__#_\r\n___#\r\n0.1 1.54\r\n3.8 1.1\r\n",            # CRLF
+    "4  3  \n____  \n__#_\t\n___#\n0.100000 1.540000 \n 3.800000\t1.100000\n\n\n",  # blanks, %f
+    "4\n3\n_*__\n__#_\n@__#\n0.1\n1.54\n3.8\n1.1",                     # vacuum cells, no final newline
+])
+def test_lenient_forms_load_the_same_problem(text):
+    reference = parse_problem(SPACE0)
+    problem = parse_problem(text)
+    assert problem == reference
+
+
+@pytest.mark.parametrize("path", COURSE_PROBLEMS, ids=lambda p: p.name)
+def test_course_problems_round_trip_through_the_canonical_layout(path):
+    problem = parse_problem(path.read_text())
+    assert parse_problem(format_problem(problem)) == problem
+
+
+# (case, text, expected line, expected column, words the message must contain)
+BAD_PROBLEMS = [
+    ("missing size", "", 1, 1, "missing map width"),
+    ("missing height", "4\n", 1, 2, "missing map height"),
+    ("non-integer size", "4.5\n3\n", 1, 1, "not an integer"),
+    ("non-integer height", "4\nthree\n", 2, 1, "not an integer"),
+    ("zero size", "0\n3\n", 1, 1, "must be positive"),
+    ("row too short", "4\n3\n____\n__#\n___#\n0.1\n1.54\n3.8\n1.1\n", 4, 4, "has 3 cells, expected 4"),
+    ("row too long", "4\n3\n____\n__#__\n___#\n0.1\n1.54\n3.8\n1.1\n", 4, 5, "has 5 cells"),
+    ("too few rows", "4\n3\n____\n__#_\n0.1\n1.54\n3.8\n1.1\n", 5, 1, "too few rows"),
+    ("too few rows at end", "4\n3\n____\n__#_\n", 5, 1, "too few rows"),
+    ("unknown cell", "4\n3\n____\n__%_\n___#\n0.1\n1.54\n3.8\n1.1\n", 4, 3, "unknown cell character '%'"),
+    ("missing goal", "4\n3\n____\n__#_\n___#\n0.1\n1.54\n", 7, 5, "missing goal x"),
+    ("missing start y", "4\n3\n____\n__#_\n___#\n0.1\n", 6, 4, "missing start y"),
+    ("non-number coordinate", "4\n3\n____\n__#_\n___#\n0.1\nabc\n3.8\n1.1\n", 7, 1, "not a number"),
+    ("nan coordinate", "4\n3\n____\n__#_\n___#\n0.1\nnan\n3.8\n1.1\n", 7, 1, "not a finite number"),
+    ("inf coordinate", "4\n3\n____\n__#_\n___#\n0.1\n1.5\n-inf\n1.1\n", 8, 1, "not a finite number"),
+    ("overflowing coordinate", "4\n3\n____\n__#_\n___#\n0.1\n1.5\n1e999\n1.1\n", 8, 1, "not a finite number"),
+    ("start blocked", "4\n3\n____\n__#_\n___#\n2.5\n1.5\n3.8\n1.1\n", 6, 1, "start (2.5, 1.5) is in blocked cell (2, 1)"),
+    ("start outside", "4\n3\n____\n__#_\n___#\n4.0\n1.5\n3.8\n1.1\n", 6, 1, "start (4.0, 1.5) is outside the map"),
+    ("start negative", "4 3\n____\n__#_\n___#\n0.5 -0.1\n3.8 1.1\n", 5, 1, "start (0.5, -0.1) is outside"),
+    ("goal blocked", "4\n3\n____\n__#_\n___#\n0.1\n1.54\n3.5\n0.5\n", 8, 1, "goal (3.5, 0.5) is in blocked cell (3, 0)"),
+    ("goal outside", "4 3\n____\n__#_\n___#\n0.1 1.54\n3.8 3.0\n", 6, 1, "goal (3.8, 3.0) is outside the map"),
+    ("trailing junk", "4 3\n____\n__#_\n___#\n0.1 1.54\n3.8 1.1 7\n", 6, 9, "unexpected text '7'"),
+    ("binary", "4 3\n__\x00_\n", 2, 3, "binary data"),
+]
+
+
+@pytest.mark.parametrize("case,text,line,column,words", BAD_PROBLEMS, ids=[c[0] for c in BAD_PROBLEMS])
+def test_bad_problem_names_line_and_column(case, text, line, column, words):
+    with pytest.raises(ProblemFormatError) as caught:
+        parse_problem(text)
+    error = caught.value
+    assert (error.line, error.column) == (line, column), str(error)
+    assert words in error.message
+
+
+@pytest.mark.parametrize("case,text,line,column,words", BAD_PROBLEMS, ids=[c[0] for c in BAD_PROBLEMS])
+def test_cli_rejects_bad_problem_with_one_line_and_exit_2(case, text, line, column, words):
+    for args in ([], ["-grad"]):
+        done = run_planner(args + ["-seed", "1"], text, timeout=30)
+        assert done.returncode == 2
+        assert done.stdout == b""
+        err = done.stderr.decode()
+        assert err.count("\n") == 1 and "Traceback" not in err
+        assert f"line {line}, column {column}" in err and words in err
+
+
+def test_undecodable_bytes_are_a_located_error_not_a_crash():
+    done = run_planner([], "4 3\n__\udcff_\n".encode("utf-8", "surrogateescape").decode("latin-1"))
+    assert done.returncode == 2 and b"line 2" in done.stderr and b"Traceback" not in done.stderr
+
+
+def test_huge_declared_size_is_rejected_before_allocating():
+    with pytest.raises(ProblemFormatError, match="larger than"):
+        parse_problem("100000 100000\n")
+    assert math.isfinite(parse_problem(SPACE0).start[0])
