@@ -1,0 +1,77 @@
+"""Helpers for the validator's tests: the corpus, and running the command as a user would."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from planning_core.problem_text import parse_problem
+from planning_core.vehicles import Vehicle
+
+ROOT = Path(__file__).resolve().parents[2]
+CORPUS = Path(__file__).resolve().parent / "corpus"
+PROBLEMS = CORPUS / "problems"
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    problem: str
+    output: str
+    flags: tuple[str, ...]
+    valid: bool
+    check: int | None
+    message: str | None
+    line: int | None
+    warning: str | None
+    note: str
+
+    @property
+    def vehicle(self) -> Vehicle:
+        return vehicle_from_flags(self.flags)
+
+    @property
+    def output_path(self) -> Path:
+        return CORPUS / "outputs" / self.output
+
+    @property
+    def problem_path(self) -> Path:
+        return PROBLEMS / self.problem
+
+    @property
+    def id(self) -> str:
+        return f"{self.output.split('/')[0]}-{self.name}" + (
+            "-strict" if "-strict" in self.flags else "")
+
+
+def load_cases() -> list[Case]:
+    raw = json.loads((CORPUS / "cases.json").read_text())
+    return [Case(**{**c, "flags": tuple(c["flags"])}) for c in raw]
+
+
+def vehicle_from_flags(flags) -> Vehicle:
+    if "-left" in flags:
+        return Vehicle.LEFT_SPACESHIP
+    return Vehicle.SPACESHIP if "-grad" in flags else Vehicle.POINT
+
+
+def load_problem(name: str):
+    return parse_problem((PROBLEMS / name).read_text())
+
+
+def run_validator(args: list[str], problem_text: str | bytes, cwd: Path,
+                  timeout: float = 60) -> subprocess.CompletedProcess:
+    """``python -m validator ARGS`` with the problem on stdin, in ``cwd`` (for tree-viz.pdf)."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    data = problem_text.encode() if isinstance(problem_text, str) else problem_text
+    return subprocess.run([sys.executable, "-m", "validator", *args], input=data,
+                          capture_output=True, timeout=timeout, cwd=cwd, env=env)
+
+
+def python_planner(code: str) -> list[str]:
+    """A planner command that runs ``code`` with this interpreter."""
+    return [sys.executable, "-c", code]

@@ -1,0 +1,3 @@
+from validator.cli import entry_point
+
+entry_point()

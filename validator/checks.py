@@ -1,0 +1,442 @@
+"""The validator's checks: SPEC section 3, checks 1 to 7, in that order.
+
+:func:`validate_output` reads a planner's output text, re-simulates it and
+returns a :class:`ValidationReport`. It prints nothing and imports only
+planning_core.
+
+The run stops at the first failed check, as the course tool did: later checks
+would only report consequences of the same fault, and on a hostile output they
+would spend time for nothing. Each failure carries the SPEC message exactly as
+written (grading scripts grep for them), the 1-based line of the planner's
+output at fault, a detail sentence with the values, and the world point where
+it happens (for the PDF).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
+from planning_core.plan_text import PlanParseError
+from planning_core.problem import Problem
+from planning_core.vehicles import Vehicle
+from planning_core.vehicles import spaceship
+from planning_core.world import SAMPLE_STEP, GridWorld
+
+# The SPEC 3 messages, verbatim.
+PARSE_ERROR = "Error parsing planner output!"
+EMPTY_TRAJECTORY = "Empty trajectory!"
+OUT_OF_BOUNDS = "State in trajectory that goes out of bounds!"
+NOT_AT_START = "Trajectory doesn't start at start!"
+LAST_EDGE_COLLISION = "Last edge in trajectory had collision!"
+NOT_AT_GOAL = "Trajectory doesn't get close enough to goal!"
+POINT_COLLISION = "Trajectory collides with an obstacle!"
+SPACESHIP_COLLISION = "Trajectory collides with something!"
+# Not in the course tool: a trajectory whose check would cost unbounded time.
+TOO_LONG = "Trajectory too long to check!"
+VALID_VERDICT = "Solution trajectory appears valid."
+INVALID_VERDICT = "Putative solution trajectory has problems."
+
+START_TOLERANCE = 0.001  # in each of x and y (and dx, dy for the spaceship)
+GOAL_TOLERANCE = 0.1     # Euclidean distance to the goal point
+STATE_TOLERANCE = 0.01   # check 7, in each of x, y, dx, dy
+
+CHECK_NAMES = ("parse", "nonempty", "bounds", "start", "goal", "collision", "dynamics")
+CHECK_TITLES = (
+    "the output parses",
+    "the trajectory is not empty",
+    "every trajectory state is inside the map, with legal controls",
+    "the trajectory starts at the start",
+    "the trajectory ends within 0.1 of the goal",
+    "the trajectory is collision-free",
+    "each control leads to the next state",
+)
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Bounds that keep validation time and memory finite on hostile output.
+
+    Far beyond any honest answer: the course maps need tens of lines, a 500 x 500
+    map a few thousand.
+    """
+
+    max_trajectory_lines: int = 1_000_000
+    """A larger trajectory count fails check 1 (checking costs ~30 us a line)."""
+    max_point_path_length: float = 1_000_000.0
+    """A longer point path fails check 6 with TOO_LONG (sampling costs ~0.3 us per 0.05)."""
+    max_tree_rows_kept: int = 250_000
+    """Tree rows past this many are parsed and counted but not kept (nor drawn)."""
+    max_warnings_listed: int = 20
+    """Corner-cut warnings listed one by one; the rest are summed up in one line."""
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    number: int                # 1..7, as in SPEC 3
+    name: str                  # CHECK_NAMES[number - 1]
+    passed: bool
+    message: str = ""          # on failure: the SPEC message, verbatim
+    detail: str = ""           # values, expected vs found; on success a short summary
+    line: int | None = None    # 1-based line of the planner's output at fault
+    where: tuple[float, float] | None = None  # world point of the fault
+
+    @property
+    def title(self) -> str:
+        return CHECK_TITLES[self.number - 1]
+
+
+@dataclass(frozen=True)
+class CornerCut:
+    """A point segment that enters a blocked cell between two 0.05 samples."""
+
+    line: int                  # line of the segment's first point (the next line ends it)
+    column: int
+    row: int
+    where: tuple[float, float]  # where the segment enters the cell
+
+
+@dataclass(frozen=True)
+class ValidationReport:
+    vehicle: Vehicle
+    strict: bool
+    checks: list[CheckResult]
+    warnings: list[str] = field(default_factory=list)
+    corner_cuts: list[CornerCut] = field(default_factory=list)
+    plan: PlanArrays | None = None
+    path_length: float | None = None
+    # Spaceship: the state the last line's control leads to (not printed by planners).
+    final_state: tuple[float, float, float, float] | None = None
+
+    @property
+    def checks_expected(self) -> int:
+        return 7 if self.vehicle.is_spaceship else 6
+
+    @property
+    def valid(self) -> bool:
+        return (len(self.checks) == self.checks_expected
+                and all(check.passed for check in self.checks))
+
+    @property
+    def first_failure(self) -> CheckResult | None:
+        return next((check for check in self.checks if not check.passed), None)
+
+    @property
+    def first_failing_line(self) -> int | None:
+        failure = self.first_failure
+        return failure.line if failure else None
+
+    @property
+    def verdict(self) -> str:
+        return VALID_VERDICT if self.valid else INVALID_VERDICT
+
+    @property
+    def trajectory_count(self) -> int | None:
+        return self.plan.trajectory_count if self.plan else None
+
+    @property
+    def tree_count(self) -> int | None:
+        return self.plan.tree_count if self.plan else None
+
+
+class _Failed(Exception):
+    """Raised inside a check; carries its result."""
+
+    def __init__(self, result: CheckResult):
+        self.result = result
+
+
+def _num(value: float) -> str:
+    return f"{value:.6g}"
+
+
+def _point(*values: float) -> str:
+    return "(" + ", ".join(_num(v) for v in values) + ")"
+
+
+def _angle(*values: float) -> str:
+    return "<" + ", ".join(_num(v) for v in values) + ">"
+
+
+def _place(problem: Problem, x: float, y: float) -> str:
+    if not (0.0 <= x < problem.width and 0.0 <= y < problem.height):
+        return f"{_point(x, y)} is outside the map [0, {problem.width}) x [0, {problem.height})"
+    return f"{_point(x, y)} is in blocked cell ({int(x)}, {int(y)})"
+
+
+def dynamics_message(control: tuple[float, float], state: tuple[float, ...],
+                     claimed: tuple[float, ...], computed: tuple[float, ...]) -> str:
+    """Check 7's message, SPEC 3's form with the values filled in."""
+    return (f"Trajectory claims that control {_angle(*control)} at state {_angle(*state)} "
+            f"gives state {_angle(*claimed)} but I get state {_angle(*computed)}!")
+
+
+def _same_signs(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
+    # 0.0 == -0.0, yet atan2 tells them apart: a velocity of (-0.0, 0.0) points at pi.
+    return all(math.copysign(1.0, u) == math.copysign(1.0, v) for u, v in zip(a, b))
+
+
+def _vehicle_hint(error: PlanParseError, vehicle: Vehicle) -> str:
+    """Name the likely cause when the numbers per line fit the other vehicle."""
+    found = getattr(error, "found", None)
+    if vehicle.is_spaceship and found in (2, 4):
+        return (" (a point-vehicle answer? the output is being checked for the "
+                f"{vehicle.value} vehicle, 6 numbers a line)")
+    if not vehicle.is_spaceship and found == 6:
+        return " (a spaceship answer? check it with -grad)"
+    return ""
+
+
+class _Validation:
+    """One run of the checks; each ``check_*`` method returns a result or raises _Failed."""
+
+    def __init__(self, problem: Problem, vehicle: Vehicle, strict: bool, limits: Limits):
+        self.problem = problem
+        self.vehicle = vehicle
+        self.strict = strict
+        self.limits = limits
+        self.world = GridWorld(problem)
+        self.plan: PlanArrays | None = None
+        self.warnings: list[str] = []
+        self.corner_cuts: list[CornerCut] = []
+        self.path_length: float | None = None
+        self.final_state: tuple[float, float, float, float] | None = None
+        self.last_slices: list[tuple[float, float, float, float]] = []
+
+    def fail(self, number: int, message: str, detail: str, line: int | None,
+             where: tuple[float, float] | None = None) -> _Failed:
+        return _Failed(CheckResult(number, CHECK_NAMES[number - 1], False, message, detail,
+                                   line, where))
+
+    def passed(self, number: int, detail: str = "") -> CheckResult:
+        return CheckResult(number, CHECK_NAMES[number - 1], True, "", detail)
+
+    def line_of(self, index: int) -> int:
+        return self.plan.trajectory_line(index)
+
+    # 1
+    def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
+        fields = self.vehicle.line_fields
+        tree_fields = 6 if self.vehicle.is_spaceship else 4
+        if output_cap is not None:
+            line = text.count("\n") + 1
+            raise self.fail(1, PARSE_ERROR, f"line {line}: the planner wrote more than "
+                            f"{output_cap} bytes on stdout (the validator's cap); the output "
+                            "was cut off there", line)
+        try:
+            self.plan = read_plan(text, fields, tree_fields,
+                                  max_trajectory_rows=self.limits.max_trajectory_lines,
+                                  max_tree_rows_kept=self.limits.max_tree_rows_kept)
+        except PlanParseError as error:
+            detail = f"line {error.line}: {error.message}"
+            if isinstance(error, PlanRowError):
+                detail += _vehicle_hint(error, self.vehicle)
+            raise self.fail(1, PARSE_ERROR, detail, error.line) from None
+        if self.plan.trailing_line is not None:
+            self.warnings.append(f"line {self.plan.trailing_line}: text after the tree "
+                                 "is ignored")
+        return self.passed(1, f"{self.plan.trajectory_count} trajectory lines, "
+                              f"{self.plan.tree_count} tree lines")
+
+    # 2
+    def check_nonempty(self) -> CheckResult:
+        if self.plan.trajectory_count == 0:
+            line = self.plan.trajectory_first_line - 1
+            raise self.fail(2, EMPTY_TRAJECTORY, f"line {line}: the trajectory count is 0; "
+                            "a trajectory has at least one line, the start", line)
+        return self.passed(2)
+
+    # 3
+    def check_bounds(self) -> CheckResult:
+        width, height = self.problem.width, self.problem.height
+        left_only = self.vehicle is Vehicle.LEFT_SPACESHIP
+        two_pi = 2.0 * math.pi
+        for index, row in enumerate(self.plan.trajectory_rows()):
+            x, y = row[0], row[1]
+            if not (0.0 < x < width and 0.0 < y < height):
+                raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: point "
+                                f"{_point(x, y)} is not strictly inside the map (0, {width}) "
+                                f"x (0, {height})", self.line_of(index), (x, y))
+            if len(row) == 6:
+                theta, thrust = row[4], row[5]
+                if not 0.0 <= thrust <= spaceship.MAX_THRUST:
+                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: thrust "
+                                    f"s = {_num(thrust)} is outside [0, {spaceship.MAX_THRUST}]",
+                                    self.line_of(index), (x, y))
+                if left_only and not theta % two_pi <= math.pi:
+                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: theta = "
+                                    f"{_num(theta)} (mod 2 pi: {_num(theta % two_pi)}) is "
+                                    "outside [0, pi]: the left-only spaceship cannot thrust "
+                                    "to the right", self.line_of(index), (x, y))
+        return self.passed(3)
+
+    # 4
+    def check_start(self) -> CheckResult:
+        row = self.plan.trajectory_row(0)
+        sx, sy = self.problem.start
+        line = self.line_of(0)
+        if abs(row[0] - sx) > START_TOLERANCE or abs(row[1] - sy) > START_TOLERANCE:
+            raise self.fail(4, NOT_AT_START, f"line {line}: first point {_point(row[0], row[1])}"
+                            f", start {_point(sx, sy)} (tolerance {START_TOLERANCE} in x and y)",
+                            line, (row[0], row[1]))
+        if len(row) == 6 and (abs(row[2]) > START_TOLERANCE or abs(row[3]) > START_TOLERANCE):
+            raise self.fail(4, NOT_AT_START, f"line {line}: first velocity "
+                            f"{_point(row[2], row[3])} is not at rest (tolerance "
+                            f"{START_TOLERANCE} in dx and dy)", line, (row[0], row[1]))
+        return self.passed(4)
+
+    # 5
+    def check_goal(self) -> CheckResult:
+        plan = self.plan
+        last = plan.trajectory_count - 1
+        row = plan.trajectory_row(last)
+        line = self.line_of(last)
+        gx, gy = self.problem.goal
+        if len(row) == 6:
+            slices = spaceship.slice_states(row[:4], row[4:])
+            for k, (x, y, _, _) in enumerate(slices):
+                if not self.world.point_free(x, y):
+                    raise self.fail(5, LAST_EDGE_COLLISION, f"line {line}: control "
+                                    f"{_angle(*row[4:])} from state {_angle(*row[:4])}: "
+                                    f"slice {k + 1} of {spaceship.SLICES} at "
+                                    f"{_place(self.problem, x, y)}", line, (x, y))
+            self.last_slices = slices
+            self.final_state = slices[-1]
+            x, y = slices[-1][0], slices[-1][1]
+            what = f"the last line's control {_angle(*row[4:])} ends at {_point(x, y)}"
+        else:
+            x, y = row
+            what = f"the last point {_point(x, y)}"
+        distance = math.hypot(x - gx, y - gy)
+        if not distance <= GOAL_TOLERANCE:
+            raise self.fail(5, NOT_AT_GOAL, f"line {line}: {what}, {_num(distance)} from the "
+                            f"goal {_point(gx, gy)} (at most {GOAL_TOLERANCE})", line, (x, y))
+        return self.passed(5, f"ends {_num(distance)} from the goal")
+
+    # 6, point vehicle
+    def check_point_collisions(self) -> CheckResult:
+        plan, world, problem = self.plan, self.world, self.problem
+        values = plan.trajectory  # x0, y0, x1, y1, ... (streamed: up to a million points)
+        n = plan.trajectory_count
+        length = math.fsum(math.hypot(values[2 * k + 2] - values[2 * k],
+                                      values[2 * k + 3] - values[2 * k + 1])
+                           for k in range(n - 1))
+        self.path_length = length
+        if length > self.limits.max_point_path_length:
+            raise self.fail(6, TOO_LONG, f"the path is {_num(length)} map units long; the "
+                            f"validator samples at most {_num(self.limits.max_point_path_length)}"
+                            " units", plan.trajectory_first_line)
+        if n == 1:  # no segment: the sampling below covers every point but a lone one
+            x, y = values[0], values[1]
+            if not world.point_free(x, y):
+                raise self.fail(6, POINT_COLLISION, f"line {self.line_of(0)}: point "
+                                f"{_place(problem, x, y)}", self.line_of(0), (x, y))
+        cut_count = 0
+        for index in range(n - 1):
+            x0, y0, x1, y1 = values[2 * index:2 * index + 4]
+            line = self.line_of(index)
+            segment = (f"segment from line {line} {_point(x0, y0)} to line {line + 1} "
+                       f"{_point(x1, y1)}")
+            hit = world.first_sampled_collision(x0, y0, x1, y1, SAMPLE_STEP)
+            if hit is not None:
+                raise self.fail(6, POINT_COLLISION, f"{segment}: the sample at "
+                                f"{_place(problem, *hit)}", line, hit)
+            exact = world.first_blocked_cell_on_segment(x0, y0, x1, y1)
+            if exact is None:
+                continue
+            where = (x0 + (x1 - x0) * exact.fraction, y0 + (y1 - y0) * exact.fraction)
+            cut = (f"{segment} cuts the corner of blocked cell ({exact.column}, {exact.row}) "
+                   f"between the {SAMPLE_STEP}-unit samples")
+            if self.strict:
+                raise self.fail(6, POINT_COLLISION, f"{cut} (-strict)", line, where)
+            self.corner_cuts.append(CornerCut(line, exact.column, exact.row, where))
+            cut_count += 1
+            if cut_count <= self.limits.max_warnings_listed:
+                self.warnings.append(f"{cut} (a failure with -strict)")
+        if cut_count > self.limits.max_warnings_listed:
+            self.warnings.append(f"... and {cut_count - self.limits.max_warnings_listed} more "
+                                 "segments that cut a blocked cell's corner")
+        return self.passed(6, f"{n - 1} segments"
+                              + (f", {cut_count} cutting a corner" if cut_count else ""))
+
+    # 6 and 7, spaceship: one integration per line serves both checks.
+    def check_spaceship_motion(self) -> tuple[CheckResult, CheckResult]:
+        plan, world, problem = self.plan, self.world, self.problem
+        point_free = world.point_free
+        slice_states = spaceship.slice_states
+        n = plan.trajectory_count
+        length = 0.0
+        mismatch: _Failed | None = None
+        previous_row: tuple[float, ...] | None = None
+        previous_end: tuple[float, ...] = ()
+        previous_length = 0.0
+        for index, row in enumerate(plan.trajectory_rows()):
+            line = self.line_of(index)
+            if row == previous_row and _same_signs(row, previous_row):
+                # Same state and control as the line before: same (free) motion.
+                end, step_length = previous_end, previous_length
+            else:
+                x, y = row[0], row[1]
+                if not point_free(x, y):
+                    raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
+                                    f"{_place(problem, x, y)}", line, (x, y))
+                slices = (self.last_slices if index == n - 1 and self.last_slices
+                          else slice_states(row[:4], row[4:]))
+                step_length = 0.0
+                for k, (sx, sy, _, _) in enumerate(slices):
+                    if not point_free(sx, sy):
+                        raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: control "
+                                        f"{_angle(*row[4:])} from state {_angle(*row[:4])}: "
+                                        f"slice {k + 1} of {spaceship.SLICES} at "
+                                        f"{_place(problem, sx, sy)}", line, (sx, sy))
+                    step_length += math.hypot(sx - x, sy - y)
+                    x, y = sx, sy
+                end = slices[-1]
+                previous_row, previous_end, previous_length = row, end, step_length
+            length += step_length
+            if mismatch is None and index + 1 < n:
+                claimed = plan.trajectory_row(index + 1)[:4]
+                if not all(abs(a - b) <= STATE_TOLERANCE for a, b in zip(claimed, end)):
+                    mismatch = self.fail(
+                        7, dynamics_message(row[4:], row[:4], claimed, end),
+                        f"line {line}: its control applied to its state does not give line "
+                        f"{line + 1}'s state (tolerance {STATE_TOLERANCE} in each of x, y, "
+                        "dx, dy)", line + 1, (claimed[0], claimed[1]))
+        self.path_length = length
+        collision_free = self.passed(6, f"{n} steps of {spaceship.SLICES} slices")
+        if mismatch is not None:
+            return collision_free, mismatch.result
+        return collision_free, self.passed(7)
+
+    def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
+        results: list[CheckResult] = []
+        try:
+            results.append(self.check_parse(text, output_cap))
+            results.append(self.check_nonempty())
+            results.append(self.check_bounds())
+            results.append(self.check_start())
+            results.append(self.check_goal())
+            if self.vehicle.is_spaceship:
+                results.extend(self.check_spaceship_motion())
+            else:
+                results.append(self.check_point_collisions())
+        except _Failed as failure:
+            results.append(failure.result)
+        return results
+
+
+def validate_output(problem: Problem, vehicle: Vehicle, output_text: str,
+                    strict: bool = False, limits: Limits = Limits(),
+                    output_cap_exceeded: int | None = None) -> ValidationReport:
+    """Run checks 1 to 7 of SPEC 3 on a planner's output for ``problem``.
+
+    ``strict``: a point segment that cuts a blocked cell's corner between samples
+    fails check 6 instead of giving a warning. ``output_cap_exceeded``: the cap in
+    bytes, when the planner's output was cut off at it (check 1 then fails).
+    Never raises on any text.
+    """
+    run = _Validation(problem, vehicle, strict, limits)
+    checks = run.run(output_text, output_cap_exceeded)
+    return ValidationReport(vehicle, strict, checks, run.warnings, run.corner_cuts, run.plan,
+                            run.path_length, run.final_state)
