@@ -1,8 +1,8 @@
 """How a tree node moves toward a random target, per vehicle.
 
 Point vehicle: straight to the target when the segment is free (exact grid
-walk); otherwise, with ``partial_extension``, as far as the first blocked cell
-allows. Spaceships: ``controls_per_extension`` random controls, each held for
+walk); otherwise, with ``partial_extension``, toward the first blocked cell,
+stopping ``wall_clearance`` short of it. Spaceships: ``controls_per_extension`` random controls, each held for
 one step; the collision-free one ending closest to the target wins (SPEC 2).
 """
 
@@ -14,16 +14,13 @@ import random
 from planning_core.vehicles import spaceship
 from planning_core.world import GridWorld
 
-# How far short of a blocked cell a partial extension stops, in map units:
-# far above rounding error, far below a cell.
-_WALL_MARGIN = 0.01
-
-
 class PointSteering:
-    def __init__(self, world: GridWorld, partial_extension: bool, min_extension: float):
+    def __init__(self, world: GridWorld, partial_extension: bool, min_extension: float,
+                 wall_clearance: float):
         self.world = world
         self.partial_extension = partial_extension
         self.min_extension = min_extension
+        self.wall_clearance = wall_clearance
 
     def extend(self, state: tuple[float, ...], target: tuple[float, float],
                rng: random.Random) -> tuple[tuple[float, float], None] | None:
@@ -35,7 +32,7 @@ class PointSteering:
         if not self.partial_extension:
             return None
         length = math.hypot(tx - x0, ty - y0)
-        reach = hit.fraction * length - _WALL_MARGIN
+        reach = hit.fraction * length - self.wall_clearance
         if reach < self.min_extension:
             return None
         t = reach / length

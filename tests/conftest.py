@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-# shared/ sits beside the checkout (SPEC's example problems); CI clones next to it too.
-COURSE_DIR = ROOT.parent / "shared" / "problems" / "course"
+# Copies of the course problems (../shared/problems/course) kept in the repo, so a clone is self-contained.
+COURSE_DIR = ROOT / "benchmarks" / "problems" / "course"
 COURSE_PROBLEMS = sorted(COURSE_DIR.glob("*.sw"))
 
 

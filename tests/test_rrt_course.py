@@ -1,0 +1,31 @@
+"""Issue 2's acceptance: every course problem, all three vehicles, 20 seeds each,
+every output passes the validator's checks. In-process (same code path as the CLI
+from problem to text) so the sweep stays quick; the CLI is covered separately."""
+
+import random
+
+import pytest
+
+from planning_core.plan_text import format_plan
+from planning_core.problem_text import parse_problem
+from planning_core.vehicles import Vehicle
+from rrt_cli.planners import rrt
+from rrt_cli.planners.base import StopCondition
+from tests.conftest import COURSE_PROBLEMS
+from validator.checks import validate_output
+
+SEEDS = range(20)
+
+
+@pytest.mark.parametrize("vehicle", list(Vehicle), ids=lambda v: v.value)
+@pytest.mark.parametrize("path", COURSE_PROBLEMS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("seed", SEEDS)
+def test_course_problem_solved_and_valid(path, vehicle, seed):
+    problem = parse_problem(path.read_text())
+    result = rrt.solve(problem, vehicle, StopCondition(time_limit=60), random.Random(seed))
+    assert result.solved, result.status
+    output = format_plan(result.trajectory, result.tree)
+    report = validate_output(problem, vehicle, output, strict=True)
+    assert report.valid, report.first_failure
+    assert not report.warnings
+    assert len(result.tree) == result.stats.tree_nodes - 1
