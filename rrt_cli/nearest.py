@@ -9,6 +9,7 @@ thousands of empty buckets.
 
 from __future__ import annotations
 
+import heapq
 import math
 
 
@@ -91,6 +92,49 @@ class QuadtreeNearest:
             push(children[q ^ 2])
             push(children[q])
         return best_index
+
+    def k_nearest(self, x: float, y: float, k: int) -> list[int]:
+        """Indices of the ``k`` points closest to (x, y), nearest first.
+
+        Ties are broken by insertion order, so the answer equals sorting every
+        point by ``(squared distance, index)`` and keeping the first ``k``.
+        Fewer than ``k`` points: all of them.
+        """
+        if k <= 0:
+            return []
+        xs, ys = self.xs, self.ys
+        # Max-heap of the k best so far, as (-d2, -index): the top is the worst kept.
+        kept: list[tuple[float, int]] = []
+        worst_d2 = math.inf
+        stack = [self.root]
+        pop, push = stack.pop, stack.append
+        while stack:
+            node = pop()
+            gx = node[0] - x if x < node[0] else (x - node[2] if x > node[2] else 0.0)
+            gy = node[1] - y if y < node[1] else (y - node[3] if y > node[3] else 0.0)
+            if gx * gx + gy * gy > worst_d2:
+                continue
+            children = node[4]
+            if children is None:
+                for index in node[5]:
+                    ddx = xs[index] - x
+                    ddy = ys[index] - y
+                    d2 = ddx * ddx + ddy * ddy
+                    if len(kept) < k:
+                        heapq.heappush(kept, (-d2, -index))
+                        if len(kept) == k:
+                            worst_d2 = -kept[0][0]
+                    elif d2 < worst_d2 or (d2 == worst_d2 and index < -kept[0][1]):
+                        heapq.heapreplace(kept, (-d2, -index))
+                        worst_d2 = -kept[0][0]
+                continue
+            q = _quadrant(node, x, y)
+            push(children[3 - q])
+            push(children[q ^ 1])
+            push(children[q ^ 2])
+            push(children[q])
+        kept.sort(reverse=True)
+        return [-negated_index for _, negated_index in kept]
 
 
 # Below this box width a leaf stops splitting (only exact duplicates get there).

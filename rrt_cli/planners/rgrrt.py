@@ -1,0 +1,211 @@
+"""RG-RRT for the spaceships: reachability-guided RRT (A. Shkolnik, M. Walter and
+R. Tedrake, "Reachability-guided sampling for planning under differential
+constraints", IEEE ICRA 2009).
+
+Plain RRT picks the node nearest to a random target by position, which for a
+ship with momentum is often a node that cannot move toward the target at all:
+it then keeps extending the same hopeless nodes. RG-RRT measures instead how
+close each node can *get* to the target. Every node keeps its reachable set:
+the end states, after one step, of a small fixed set of controls (no thrust,
+and full thrust at ``angles`` evenly spaced angles over the vehicle's theta
+range). Each iteration:
+
+1. draws a target (the goal with probability ``goal_bias``, else a uniform
+   point of the map);
+2. finds the reachable state closest to it (by position) over the whole tree,
+   and so the node that owns it;
+3. rejects the target when that node itself is closer to it than that closest
+   reachable state: every move of the node would take it away from the target,
+   so the target lies "behind" the node and would only waste an extension;
+4. otherwise adds that reachable state as a new node, reached with its control
+   held for one step, and computes the new node's reachable set.
+
+The reachable states are integrated with collision checks when their node is
+added (every slice free, every position strictly inside the map), so a
+reachable state is always a legal child and step 4 integrates nothing. A
+reachable state that becomes a node is marked used, so it is never added
+twice: when the nearest reachable state is a used one, the search goes on from
+the node it became, to that node's reachable state closest to the target, with
+the same rejection rule (the quadtree has no deletion, and a used state sits
+exactly on its node, so the answer is almost always one level down). A node
+whose reachable set holds a state within ``goal_tolerance`` of the goal ends the
+search at once.
+
+Reachable positions live in a :class:`~rrt_cli.nearest.QuadtreeNearest`; each
+point's index maps to its node and control.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from dataclasses import dataclass
+
+from planning_core.problem import Problem
+from planning_core.vehicles import Vehicle, spaceship
+from planning_core.world import GridWorld
+from rrt_cli.nearest import QuadtreeNearest
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
+from rrt_cli.planners.rrt import _trajectory, _tree, sample_target, start_state
+
+
+@dataclass(frozen=True)
+class RGRRTParams:
+    goal_bias: float = 0.05
+    """Probability that the random target is the goal (as RRT's, SPEC 2)."""
+    goal_tolerance: float = 0.1
+    """A node within this distance of the goal solves the problem."""
+    angles: int = 8
+    """Thrust directions in each node's reachable set, evenly spaced over the
+    vehicle's theta range ([0, 2 pi), or [0, pi) for the left-only ship),
+    starting at 0 (straight ahead)."""
+    thrusts: tuple[float, ...] = (0.5,)
+    """Thrust magnitudes used at every angle; zero thrust (coasting) is always in
+    the set as well. Default: the extreme one only. Adding the middle thrust
+    (0.25) was measured slower on the course maps and mazes, and far slower for
+    the left-only ship (docs/planners-spaceship.md): the weak-thrust states sit
+    close to their node, so they win many nearest queries while making little
+    progress."""
+    random_controls: int = 0
+    """Extra random controls per node (theta uniform over the range, thrust
+    uniform in [0, 0.5]), drawn once when the node is added. 0: the reachable
+    set is the fixed one only, as in the paper."""
+
+    def __post_init__(self):
+        if not 0.0 <= self.goal_bias <= 1.0:
+            raise ValueError("goal_bias must be in [0, 1]")
+        if not self.goal_tolerance > 0.0:
+            raise ValueError("goal_tolerance must be positive")
+        if self.angles < 1:
+            raise ValueError("angles must be at least 1")
+        if self.random_controls < 0:
+            raise ValueError("random_controls must be non-negative")
+        for thrust in self.thrusts:
+            if not 0.0 < thrust <= spaceship.MAX_THRUST:
+                raise ValueError(f"thrusts must be in (0, {spaceship.MAX_THRUST}]")
+
+
+Params = RGRRTParams
+
+
+def reachable_controls(params: RGRRTParams, theta_range: float) -> list[tuple[float, float]]:
+    """The fixed control set: coasting, then every thrust at every angle."""
+    controls = [(0.0, 0.0)]
+    for k in range(params.angles):
+        theta = theta_range * k / params.angles
+        controls.extend((theta, thrust) for thrust in params.thrusts)
+    return controls
+
+
+def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
+          params: RGRRTParams = RGRRTParams()) -> PlanResult:
+    if not vehicle.is_spaceship:
+        raise ValueError("RG-RRT plans for the spaceships only")
+    began = time.perf_counter()
+    world = GridWorld(problem)
+    blocked, width, height = world.blocked, world.width, world.height
+    gx, gy = problem.goal
+    tolerance2 = params.goal_tolerance * params.goal_tolerance * (1 - 1e-9)
+    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
+                   else spaceship.THETA_RANGE)
+    fixed_controls = reachable_controls(params, theta_range)
+    integrate = spaceship.integrate
+
+    states = [start_state(problem, vehicle)]
+    parents = [-1]
+    controls: list[tuple[float, float] | None] = [None]
+    # One entry per reachable state, indexed like the quadtree's points.
+    reachable = QuadtreeNearest(width, height)
+    reach_states: list[tuple[float, float, float, float]] = []
+    reach_owner: list[int] = []
+    reach_control: list[tuple[float, float]] = []
+    reach_used = bytearray()
+    # The node each used reachable state became (-1 while unused).
+    reach_child: list[int] = []
+    # Node k's reachable states are the ids reach_first[k] .. reach_first[k + 1] - 1.
+    reach_first: list[int] = [0]
+    iterations = 0
+
+    def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
+        return PlanResult(status, _trajectory(states, parents, controls, vehicle, goal_node),
+                          _tree(states, parents, controls, vehicle),
+                          PlanStats(iterations, len(states), time.perf_counter() - began),
+                          message)
+
+    def add_node(parent: int, state, control) -> int:
+        states.append(state)
+        parents.append(parent)
+        controls.append(control)
+        return len(states) - 1
+
+    def expand_reachable(node: int) -> int | None:
+        """File the node's reachable states; a goal node made from one, if any."""
+        state = states[node]
+        node_controls = fixed_controls
+        if params.random_controls:
+            node_controls = fixed_controls + [
+                (rng.random() * theta_range, rng.random() * spaceship.MAX_THRUST)
+                for _ in range(params.random_controls)]
+        for control in node_controls:
+            end = integrate(state, control, blocked, width, height)
+            # Printed states must lie strictly inside the map (SPEC 2).
+            if end is None or not (end[0] > 0.0 and end[1] > 0.0) or end == state:
+                continue  # (coasting at rest goes nowhere: no duplicate node)
+            if (end[0] - gx) ** 2 + (end[1] - gy) ** 2 <= tolerance2:
+                return add_node(node, end, control)
+            reachable.add(end[0], end[1])
+            reach_states.append(end)
+            reach_owner.append(node)
+            reach_control.append(control)
+            reach_used.append(0)
+            reach_child.append(-1)
+        reach_first.append(len(reach_states))
+        return None
+
+    if (problem.start[0] - gx) ** 2 + (problem.start[1] - gy) ** 2 <= tolerance2:
+        return result(PlanStatus.SOLVED, 0)
+    goal_node = expand_reachable(0)
+    if goal_node is not None:
+        return result(PlanStatus.SOLVED, goal_node)
+
+    while True:
+        limit = stop.status(iterations)
+        if limit is not None:
+            return result(limit, None)
+        if len(reach_states) == len(states) - 1:
+            # Every reachable state is a node already (all but the start are).
+            return result(PlanStatus.UNREACHABLE, None,
+                          "no reachable state is left to extend to")
+        iterations += 1
+        if rng.random() < params.goal_bias:
+            tx, ty = gx, gy
+        else:
+            tx, ty = sample_target(rng, width, height)
+
+        chosen = reachable.nearest(tx, ty)
+        while chosen >= 0 and reach_used[chosen]:
+            # That state is a node already: go on from it, to its own reachable
+            # state closest to the target, or give up on the target if the node
+            # is closer than all of them (the same rule as below, one level down).
+            node = reach_child[chosen]
+            nx, ny = states[node][0], states[node][1]
+            best, best_d2 = -1, (nx - tx) ** 2 + (ny - ty) ** 2
+            for candidate in range(reach_first[node], reach_first[node + 1]):
+                rx, ry = reach_states[candidate][0], reach_states[candidate][1]
+                d2 = (rx - tx) ** 2 + (ry - ty) ** 2
+                if d2 <= best_d2:
+                    best, best_d2 = candidate, d2
+            chosen = best
+        if chosen < 0:
+            continue
+        owner = reach_owner[chosen]
+        ox, oy = states[owner][0], states[owner][1]
+        rx, ry = reach_states[chosen][0], reach_states[chosen][1]
+        if (ox - tx) ** 2 + (oy - ty) ** 2 < (rx - tx) ** 2 + (ry - ty) ** 2:
+            continue  # the target lies behind the node: no move of it gets closer
+        reach_used[chosen] = 1
+        node = add_node(owner, reach_states[chosen], reach_control[chosen])
+        reach_child[chosen] = node
+        goal_node = expand_reachable(node)
+        if goal_node is not None:
+            return result(PlanStatus.SOLVED, goal_node)

@@ -1,0 +1,50 @@
+"""QuadtreeNearest.k_nearest equals a brute-force scan: every point sorted by
+(squared distance, insertion index), the first k kept."""
+
+import random
+
+import pytest
+
+from rrt_cli.nearest import QuadtreeNearest
+
+
+def brute_force(xs, ys, x, y, k):
+    order = sorted(range(len(xs)), key=lambda i: ((xs[i] - x) ** 2 + (ys[i] - y) ** 2, i))
+    return order[:max(k, 0)]
+
+
+@pytest.mark.parametrize("width,height,spread,duplicates", [
+    (10, 9, 1.0, False), (300, 300, 0.05, False), (4, 200, 1.0, True), (10, 10, 0.01, True),
+])
+def test_k_nearest_matches_brute_force(width, height, spread, duplicates):
+    rng = random.Random(width * 31 + height)
+    tree = QuadtreeNearest(width, height)
+    for i in range(1500):
+        if duplicates and i % 4 == 0 and i:
+            x, y = tree.xs[rng.randrange(i)], tree.ys[rng.randrange(i)]
+        else:
+            x, y = rng.random() * width * spread, rng.random() * height * spread
+        tree.add(x, y)
+        if i % 25 == 0:
+            qx, qy = rng.random() * width, rng.random() * height
+            for k in (1, 3, 10, 40):
+                assert tree.k_nearest(qx, qy, k) == brute_force(tree.xs, tree.ys, qx, qy, k)
+
+
+def test_ties_go_to_the_earliest_inserted():
+    tree = QuadtreeNearest(10, 10)
+    for x, y in [(1.0, 1.0), (3.0, 1.0), (2.0, 2.0), (2.0, 0.0), (1.0, 1.0)]:
+        tree.add(x, y)
+    # (2, 1) is exactly 1 from the first four; index 4 duplicates index 0.
+    assert tree.k_nearest(2.0, 1.0, 3) == [0, 1, 2]
+    assert tree.k_nearest(2.0, 1.0, 5) == [0, 1, 2, 3, 4]
+
+
+def test_small_or_empty_structures():
+    tree = QuadtreeNearest(5, 5)
+    assert tree.k_nearest(1.0, 1.0, 3) == []
+    tree.add(4.0, 4.0)
+    tree.add(1.0, 1.0)
+    assert tree.k_nearest(0.0, 0.0, 10) == [1, 0]
+    assert tree.k_nearest(0.0, 0.0, 0) == []
+    assert tree.nearest(0.0, 0.0) == 1  # nearest() is unchanged by the new method
