@@ -1,0 +1,3 @@
+from benchmarks.cli import entry_point
+
+entry_point()

@@ -1,0 +1,241 @@
+"""The one command: regenerate the suite, run the harness, write the reports.
+
+    python -m benchmarks [--preset smoke|quick|full] [--vehicles point spaceship left]
+                         [--planners rrt ompl-rrt ...] [--problems PATTERN ...]
+                         [--max-size N] [--seeds N] [--time S] [--workers 2]
+                         [--out DIR] [--no-ompl] [--no-plots] [--report-only]
+
+Writes into ``--out`` (default ``benchmarks/results/<preset>``): ``runs.csv``
+(one row per run), ``report.md`` (tables), ``plots.pdf`` and ``ompl-logs/``
+(OMPL's benchmark log format, for ompl_benchmark_statistics.py and Planner
+Arena), and ``meta.json``. Progress goes to stderr; the path of the report is
+the only line on stdout.
+
+Exit status: 0 the runs completed (whatever they found), 2 bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import datetime
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from benchmarks import catalog, generator, presets
+from benchmarks.harness import HarnessOptions, ProgressBar, RunSpec, run_all
+from benchmarks.ompl_log import LogHeader, write_logs
+from benchmarks.report import markdown_report
+from benchmarks.rows import read_csv, write_csv
+from planning_core.vehicles import Vehicle
+
+RESULTS_DIR = Path(__file__).resolve().parent / "results"
+EXIT_OK = 0
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        sys.stderr.write(f"benchmarks: error: {message}\n")
+        raise SystemExit(EXIT_USAGE)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="python -m benchmarks",
+                     description="Regenerate the problem suite, run planners x vehicles x "
+                                 "problems x seeds, and write CSV, Markdown, PDF and OMPL "
+                                 "logs.")
+    parser.add_argument("--preset", choices=sorted(presets.PRESETS), default="quick",
+                        help="which problems, vehicles, seeds and limits (default: quick)")
+    parser.add_argument("--vehicles", nargs="+", choices=[v.value for v in Vehicle],
+                        help="only these vehicles of the preset")
+    parser.add_argument("--planners", nargs="+", metavar="ID",
+                        help="only these planners (ours by -planner name, OMPL's as "
+                             "ompl-rrt, ompl-rrtconnect, ompl-kpiece1); default: all")
+    parser.add_argument("--problems", nargs="+", metavar="PATTERN",
+                        help="only problems whose name matches (shell patterns)")
+    parser.add_argument("--max-size", type=int, help="override the preset's largest map side")
+    parser.add_argument("--seeds", type=int, help="override the preset's number of seeds")
+    parser.add_argument("--time", type=float, help="override the per-run time limit (s)")
+    parser.add_argument("--workers", type=int, default=2,
+                        help="runs at a time, each in its own worker process (default: 2)")
+    parser.add_argument("--out", type=Path, help="output directory "
+                        "(default: benchmarks/results/<preset>)")
+    parser.add_argument("--no-ompl", action="store_true", help="leave OMPL's planners out")
+    parser.add_argument("--no-plots", action="store_true", help="skip the PDF")
+    parser.add_argument("--no-generate", action="store_true",
+                        help="use the problem files as they are (no regeneration)")
+    parser.add_argument("--report-only", action="store_true",
+                        help="rebuild the reports from --out/runs.csv without running")
+    parser.add_argument("--strict", action="store_true",
+                        help="validate with -strict (a cut corner is a failure)")
+    return parser
+
+
+def _load_average() -> str:
+    try:
+        return " ".join(f"{value:.2f}" for value in os.getloadavg())
+    except OSError:
+        return "unknown"
+
+
+def _ompl_version() -> str:
+    try:
+        from importlib.metadata import version
+        return version("ompl")
+    except Exception:  # noqa: BLE001 (any failure means: not installed)
+        return "not installed"
+
+
+def _git_commit() -> str:
+    try:
+        done = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=catalog.ROOT,
+                              capture_output=True, text=True, timeout=5)
+        return done.stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def _cpu_model() -> str:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
+    preset = presets.PRESETS[args.preset]
+    specs = []
+    for plan in preset.plans:
+        if args.vehicles and plan.vehicle.value not in args.vehicles:
+            continue
+        if args.max_size is not None:
+            plan = dataclasses.replace(plan, max_size=args.max_size, extra=())
+        if args.problems:
+            plan = dataclasses.replace(plan, patterns=tuple(args.problems), extra=(),
+                                       exclude=())
+        seeds = args.seeds if args.seeds is not None else plan.seeds
+        limit = args.time if args.time is not None else plan.time_limit
+        for problem in presets.select_problems(plan):
+            for planner in planners:
+                if plan.vehicle not in planner.vehicles:
+                    continue
+                specs.extend(RunSpec(planner, plan.vehicle, problem, seed, limit)
+                             for seed in range(1, seeds + 1))
+    return specs
+
+
+def write_reports(rows, out: Path, meta: dict, plots: bool) -> Path:
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(rows, out / "runs.csv")
+    report = out / "report.md"
+    report.write_text(markdown_report(rows, meta) + "\n")
+    (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
+    header = LogHeader(hostname=meta.get("host", "unknown"), date=meta.get("date", ""),
+                       cpu_info=meta.get("cpu", ""),
+                       total_seconds=float(meta.get("wall seconds", 0.0) or 0.0))
+    write_logs(rows, out / "ompl-logs", header)
+    if plots:
+        try:
+            from benchmarks.plots import write_pdf
+            write_pdf(rows, out / "plots.pdf", title=f"{meta.get('preset', '')} run: ")
+        except ImportError as error:
+            sys.stderr.write(f"benchmarks: no plots ({error}); pip install matplotlib\n")
+    return report
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.workers < 1:
+        parser.error("--workers must be at least 1")
+    if args.seeds is not None and args.seeds < 1:
+        parser.error("--seeds must be at least 1")
+    if args.time is not None and not args.time > 0:
+        parser.error("--time must be positive")
+    out = args.out or RESULTS_DIR / args.preset
+
+    if args.report_only:
+        csv_path = out / "runs.csv"
+        if not csv_path.exists():
+            parser.error(f"{csv_path} does not exist")
+        meta_path = out / "meta.json"
+        meta = json.loads(meta_path.read_text()) if meta_path.exists() else {}
+        print(write_reports(read_csv(csv_path), out, meta, not args.no_plots))
+        return EXIT_OK
+
+    if not args.no_generate:
+        before = {p: p.read_bytes() for p in generator.suite_files()}
+        paths = generator.write_suite()
+        changed = [generator.problem_id(p) for p in paths if before.get(p) != p.read_bytes()]
+        sys.stderr.write(f"benchmarks: suite of {len(paths)} problems regenerated; "
+                         + (f"{len(changed)} files changed: {', '.join(changed[:5])}"
+                            if changed else "identical byte for byte") + "\n")
+
+    ompl_note = ""
+    include_ompl = not args.no_ompl
+    if include_ompl and not catalog.ompl_installed():
+        ompl_note = ("the ompl package is not installed (pip install ompl, or the project's "
+                     "[ompl] extra): OMPL's planners were skipped")
+        sys.stderr.write(f"benchmarks: note: {ompl_note}\n")
+    planners = catalog.all_planners(include_ompl)
+    if args.planners:
+        known = {p.id for p in planners}
+        unknown = [name for name in args.planners if name not in known]
+        if unknown:
+            parser.error(f"unknown planner(s) {', '.join(unknown)}; available: "
+                         f"{', '.join(sorted(known))}")
+        planners = [p for p in planners if p.id in args.planners]
+    specs = build_specs(args, planners)
+    if not specs:
+        parser.error("no runs selected (check --vehicles, --planners and --problems)")
+
+    started = datetime.datetime.now().astimezone()
+    load_before = _load_average()
+    sys.stderr.write(f"benchmarks: {len(specs)} runs, {args.workers} workers, "
+                     f"planners {', '.join(p.id for p in planners)}; load {load_before}\n")
+    began = time.perf_counter()
+    rows = run_all(specs, HarnessOptions(workers=args.workers, strict=args.strict),
+                   ProgressBar())
+    wall = time.perf_counter() - began
+    meta = {
+        "preset": args.preset,
+        "date": started.isoformat(timespec="seconds"),
+        "host": platform.node(),
+        "cpu": f"{os.cpu_count()} x {_cpu_model()}",
+        "workers": str(args.workers),
+        "load average (1, 5, 15 min) before": load_before,
+        "load average after": _load_average(),
+        "wall seconds": f"{wall:.1f}",
+        "runs": str(len(rows)),
+        "python": platform.python_version(),
+        "ompl": _ompl_version() if include_ompl else "left out (--no-ompl)",
+        "commit": _git_commit(),
+        "command": "python -m benchmarks " + " ".join(sys.argv[1:] if argv is None else argv),
+    }
+    if ompl_note:
+        meta["note"] = ompl_note
+    print(write_reports(rows, out, meta, not args.no_plots))
+    return EXIT_OK
+
+
+def entry_point() -> None:
+    try:
+        status = main()
+    except KeyboardInterrupt:
+        sys.stderr.write("benchmarks: interrupted\n")
+        status = 130
+    raise SystemExit(status)
+
+
+if __name__ == "__main__":
+    entry_point()

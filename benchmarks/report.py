@@ -1,0 +1,302 @@
+"""Summaries of run rows and the Markdown report.
+
+Conventions (said again in the report's header):
+
+* Time is planning time (the planner's own clock) unless a column says
+  "process" (the whole planner process, start-up and output included).
+* Time statistics are over all runs, an unsolved run counting the time it
+  used (about its limit): OMPL's benchmark convention. Path length is over
+  solved runs only; tree nodes over all runs that reported them.
+* "vs OMPL" is the ratio of the median times, ours over OMPL RRT's
+  (geometric for the point vehicle, control for the spaceships), on the same
+  problems and seeds: below 1 means faster than OMPL.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+from dataclasses import dataclass
+from typing import Iterable, Sequence
+
+from benchmarks.catalog import label, reference_planner
+from benchmarks.rows import RunRow
+from planning_core.vehicles import Vehicle
+
+VEHICLE_ORDER = ("point", "spaceship", "left")
+VEHICLE_TITLES = {"point": "Point vehicle", "spaceship": "Spaceship (-grad)",
+                  "left": "Left-only spaceship (-grad -left)"}
+
+
+@dataclass(frozen=True)
+class Spread:
+    """Mean, standard deviation, median and 90th percentile of some values."""
+
+    count: int
+    mean: float
+    std: float
+    median: float
+    p90: float
+
+    @classmethod
+    def of(cls, values: Iterable[float]) -> "Spread":
+        data = sorted(v for v in values if v is not None and math.isfinite(v))
+        if not data:
+            nan = math.nan
+            return cls(0, nan, nan, nan, nan)
+        std = statistics.stdev(data) if len(data) > 1 else 0.0
+        return cls(len(data), statistics.fmean(data), std, statistics.median(data),
+                   percentile(data, 90))
+
+
+def percentile(sorted_values: Sequence[float], percent: float) -> float:
+    """Linear interpolation between closest ranks (numpy's default)."""
+    if not sorted_values:
+        return math.nan
+    position = (len(sorted_values) - 1) * percent / 100.0
+    low = math.floor(position)
+    high = min(low + 1, len(sorted_values) - 1)
+    return sorted_values[low] + (sorted_values[high] - sorted_values[low]) * (position - low)
+
+
+@dataclass(frozen=True)
+class PlannerSummary:
+    planner: str
+    implementation: str
+    runs: int
+    solved: int
+    time: Spread          # planning time, all runs
+    process: Spread       # whole process, all runs
+    path_length: Spread   # solved runs
+    tree_nodes: Spread
+    peak_memory_mb: Spread
+
+    @property
+    def success_percent(self) -> float:
+        return 100.0 * self.solved / self.runs if self.runs else math.nan
+
+
+def summarize(rows: Sequence[RunRow]) -> PlannerSummary:
+    first = rows[0]
+    return PlannerSummary(
+        first.planner, first.implementation, len(rows), sum(r.solved for r in rows),
+        Spread.of(r.time_seconds for r in rows),
+        Spread.of(r.process_seconds for r in rows),
+        Spread.of(r.path_length for r in rows if r.solved),
+        Spread.of(float(r.tree_nodes) for r in rows if r.tree_nodes is not None),
+        Spread.of(r.peak_memory_mb for r in rows if r.peak_memory_mb is not None))
+
+
+def group(rows: Iterable[RunRow], *keys: str) -> dict[tuple, list[RunRow]]:
+    groups: dict[tuple, list[RunRow]] = {}
+    for row in rows:
+        groups.setdefault(tuple(getattr(row, key) for key in keys), []).append(row)
+    return groups
+
+
+def planner_order(planners: Iterable[str]) -> list[str]:
+    """Ours first, then OMPL's, each alphabetically."""
+    return sorted(set(planners), key=lambda name: (name.startswith("ompl-"), name))
+
+
+def median_ratio(ours: Sequence[RunRow], reference: Sequence[RunRow],
+                 process: bool = False) -> float:
+    """Median time of ``ours`` over the median of ``reference`` (same problems/seeds)."""
+    pick = (lambda r: r.process_seconds) if process else (lambda r: r.time_seconds)
+    matched = {(r.problem, r.seed) for r in reference}
+    mine = [pick(r) for r in ours if (r.problem, r.seed) in matched]
+    theirs = [pick(r) for r in reference]
+    if not mine or not theirs:
+        return math.nan
+    denominator = statistics.median(theirs)
+    return statistics.median(mine) / denominator if denominator > 0 else math.nan
+
+
+def _fmt(value: float | None, digits: int = 3) -> str:
+    """``digits`` significant digits; thousands written out with separators."""
+    if value is None or not math.isfinite(value):
+        return "–"
+    if abs(value) >= 10 ** digits:
+        return f"{value:,.0f}"
+    return f"{value:.{digits}g}"
+
+
+def _pm(spread: Spread, digits: int = 3) -> str:
+    if spread.count == 0:
+        return "–"
+    return f"{_fmt(spread.mean, digits)} ± {_fmt(spread.std, digits)}"
+
+
+def _ratio(value: float) -> str:
+    return "–" if not math.isfinite(value) else f"{value:.2f}×"
+
+
+SUMMARY_HEADER = ("| Planner | Success % | Time (s) | Path length | Tree nodes | "
+                  "Median time (s) | p90 time (s) | Process median (s) | "
+                  "vs OMPL RRT, planning | vs OMPL RRT, process |")
+SUMMARY_RULE = "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+
+
+def summary_table(rows: Sequence[RunRow], vehicle: str) -> list[str]:
+    """The per-vehicle table: one line per planner, mean ± std, median, p90, ratios."""
+    by_planner = group((r for r in rows if r.vehicle == vehicle), "planner")
+    reference = by_planner.get((reference_planner(Vehicle(vehicle)),), [])
+    lines = [SUMMARY_HEADER, SUMMARY_RULE]
+    for name in planner_order(key[0] for key in by_planner):
+        runs = by_planner[(name,)]
+        s = summarize(runs)
+        lines.append(
+            f"| {label(name, vehicle)} | {s.success_percent:.0f} | {_pm(s.time)} | "
+            f"{_pm(s.path_length, 4)} | {_pm(s.tree_nodes, 4)} | {_fmt(s.time.median)} | "
+            f"{_fmt(s.time.p90)} | {_fmt(s.process.median)} | "
+            f"{_ratio(median_ratio(runs, reference))} | "
+            f"{_ratio(median_ratio(runs, reference, process=True))} |")
+    return lines
+
+
+PROBLEM_HEADER = ("| Problem | Planner | Success % | Time (s) | Median | p90 | "
+                  "Process median (s) | Path length | Tree nodes | Peak MB | "
+                  "vs OMPL, planning | vs OMPL, process |")
+PROBLEM_RULE = "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+
+
+def problem_order(rows: Iterable[RunRow]) -> list[str]:
+    sizes = {}
+    for row in rows:
+        sizes[row.problem] = row.width * row.height
+    return sorted(sizes, key=lambda name: (sizes[name], name))
+
+
+def problem_table(rows: Sequence[RunRow], vehicle: str) -> list[str]:
+    mine = [r for r in rows if r.vehicle == vehicle]
+    by_key = group(mine, "problem", "planner")
+    reference_id = reference_planner(Vehicle(vehicle))
+    lines = [PROBLEM_HEADER, PROBLEM_RULE]
+    for problem in problem_order(mine):
+        reference = by_key.get((problem, reference_id), [])
+        for name in planner_order(p for (q, p) in by_key if q == problem):
+            runs = by_key[(problem, name)]
+            s = summarize(runs)
+            lines.append(
+                f"| {problem} | {label(name, vehicle)} | {s.success_percent:.0f} | "
+                f"{_pm(s.time)} | {_fmt(s.time.median)} | {_fmt(s.time.p90)} | "
+                f"{_fmt(s.process.median)} | {_pm(s.path_length, 4)} | "
+                f"{_fmt(s.tree_nodes.median, 4)} | {_fmt(s.peak_memory_mb.median)} | "
+                f"{_ratio(median_ratio(runs, reference))} | "
+                f"{_ratio(median_ratio(runs, reference, process=True))} |")
+    return lines
+
+
+@dataclass(frozen=True)
+class TargetCheck:
+    target: str
+    met: bool | None      # None: this run has no data to judge it
+    detail: str
+
+
+def _success_within(rows: Sequence[RunRow], seconds: float) -> tuple[int, int]:
+    ok = sum(1 for r in rows if r.solved and r.time_seconds <= seconds)
+    return ok, len(rows)
+
+
+def check_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
+    """The issue's targets, judged on this run's medians (ours = every planner of ours)."""
+    checks: list[TargetCheck] = []
+    ours = sorted({r.planner for r in rows if r.implementation == "ours"})
+
+    def success_target(vehicle: str, max_size: int, seconds: float) -> None:
+        for planner in ours:
+            runs = [r for r in rows if r.vehicle == vehicle and r.planner == planner
+                    and max(r.width, r.height) <= max_size]
+            if not runs:
+                continue
+            misses = []
+            for (problem,), group_rows in sorted(group(runs, "problem").items()):
+                ok, total = _success_within(group_rows, seconds)
+                if ok < total:
+                    misses.append(f"{problem} {ok}/{total}")
+            ok, total = _success_within(runs, seconds)
+            checks.append(TargetCheck(
+                f"{vehicle}: {planner} solves 100% within {seconds:g} s up to "
+                f"{max_size}x{max_size}", not misses,
+                f"{ok}/{total} runs" + (f"; short on {', '.join(misses)}" if misses else "")))
+
+    def speed_target(vehicle: str, min_size: int, factor: float, process: bool = False,
+                     family: str | None = None) -> None:
+        reference_id = reference_planner(Vehicle(vehicle))
+        reference = [r for r in rows if r.vehicle == vehicle and r.planner == reference_id
+                     and max(r.width, r.height) >= min_size
+                     and (family is None or r.family == family)]
+        what = "whole-process" if process else "planning"
+        where = (f"on {family} problems" if family else
+                 f"from {min_size}x{min_size} up" if min_size > 1 else "on all problems")
+        for planner in ours:
+            runs = [r for r in rows if r.vehicle == vehicle and r.planner == planner
+                    and max(r.width, r.height) >= min_size
+                    and (family is None or r.family == family)]
+            if not runs or not reference:
+                continue
+            ratio = median_ratio(runs, reference, process=process)
+            bound = "at most OMPL RRT's" if factor == 1 else f"at most {factor:g}× OMPL RRT's"
+            checks.append(TargetCheck(
+                f"{vehicle}: {planner} median {what} time {where} {bound}",
+                ratio <= factor if math.isfinite(ratio) else None,
+                f"ratio {_ratio(ratio)}"))
+
+    success_target("point", 500, 10.0)
+    speed_target("point", 1, 1.0)
+    speed_target("point", 100, 0.5)
+    success_target("spaceship", 100, 30.0)
+    success_target("spaceship", 200, 120.0)
+    speed_target("spaceship", 1, 0.5)
+    for vehicle in ("point", "spaceship"):
+        speed_target(vehicle, 1, 1.0, process=True, family="course")
+    return checks
+
+
+def targets_table(rows: Sequence[RunRow]) -> list[str]:
+    lines = ["| Target | Met | Measured |", "|---|:---:|---|"]
+    for check in check_targets(rows):
+        mark = {True: "yes", False: "**no**", None: "n/a"}[check.met]
+        lines.append(f"| {check.target} | {mark} | {check.detail} |")
+    return lines
+
+
+def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
+                    per_problem: bool = True) -> str:
+    """The whole report: header, targets, a summary table per vehicle, per-problem tables."""
+    out = [f"# Benchmark report: {meta.get('preset', 'custom')} run, {meta.get('date', '')}",
+           ""]
+    for key, value in meta.items():
+        if key not in ("preset", "date"):
+            out.append(f"- {key}: {value}")
+    out += ["",
+            "Time = planning time on the planner's own clock, mean ± std over all runs "
+            "(an unsolved run counts the time it used); path length over solved runs; "
+            "\"vs OMPL RRT\" = our median time / OMPL RRT's median time on the same "
+            "problems and seeds (below 1 is faster); \"process\" = wall time of the whole "
+            "planner process. A solution the validator rejects counts as unsolved.", ""]
+    vehicles = [v for v in VEHICLE_ORDER if any(r.vehicle == v for r in rows)]
+    out += ["## Targets", ""] + targets_table(rows) + [""]
+    for vehicle in vehicles:
+        problems = {r.problem for r in rows if r.vehicle == vehicle}
+        seeds = {r.seed for r in rows if r.vehicle == vehicle}
+        limits = sorted({r.time_limit for r in rows if r.vehicle == vehicle})
+        out += [f"## {VEHICLE_TITLES[vehicle]}", "",
+                f"{len(problems)} problems x {len(seeds)} seeds, time limit "
+                f"{', '.join(f'{t:g}' for t in limits)} s.", ""]
+        out += summary_table(rows, vehicle) + [""]
+    failures = [r for r in rows if r.status in ("invalid", "crashed", "killed", "bad_input")]
+    if failures:
+        out += ["## Runs that failed for other reasons than a limit", "",
+                "| Problem | Vehicle | Planner | Seed | Status | Detail |",
+                "|---|---|---|---:|---|---|"]
+        for r in failures[:50]:
+            out.append(f"| {r.problem} | {r.vehicle} | {r.planner} | {r.seed} | {r.status} | "
+                       f"{r.failure.replace('|', '/')[:120]} |")
+        out.append("")
+    if per_problem:
+        for vehicle in vehicles:
+            out += [f"## Per problem: {VEHICLE_TITLES[vehicle]}", ""]
+            out += problem_table(rows, vehicle) + [""]
+    return "\n".join(out)
