@@ -32,6 +32,7 @@ from benchmarks.harness import HarnessOptions, ProgressBar, RunSpec, run_all
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import read_csv, write_csv
+from planning_core.cli_args import OneLineErrorParser
 from planning_core.vehicles import Vehicle
 
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
@@ -39,15 +40,8 @@ EXIT_OK = 0
 EXIT_USAGE = 2
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"benchmarks: error: {message}\n")
-        raise SystemExit(EXIT_USAGE)
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="python -m benchmarks",
+    parser = OneLineErrorParser(prog="benchmarks",
                      description="Regenerate the problem suite, run planners x vehicles x "
                                  "problems x seeds, and write CSV, Markdown, PDF and OMPL "
                                  "logs.")

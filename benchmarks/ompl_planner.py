@@ -25,6 +25,7 @@ try:
 except ModuleNotFoundError:  # run as a script from a checkout that is not installed
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from benchmarks import ompl_adapters
+from planning_core.cli_args import OneLineErrorParser, positive_float
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
@@ -37,25 +38,8 @@ DEFAULT_TIME_LIMIT = 30.0
 PLANNER_CHOICES = sorted(set(ompl_adapters.POINT_PLANNERS + ompl_adapters.SPACESHIP_PLANNERS))
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"ompl_planner: error: {message}\n")
-        raise SystemExit(EXIT_USAGE)
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not 0 < value < float("inf"):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive finite number")
-    return value
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="ompl_planner.py",
+    parser = OneLineErrorParser(prog="ompl_planner",
                      description="Plan with OMPL on a .sw problem read from stdin; print "
                                  "the trajectory and the tree on stdout.")
     parser.add_argument("-ugrad", action="store_true", help="point vehicle (the default)")
@@ -65,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
                         help="rrt (geometric or control), rrtconnect (point), kpiece1 "
                              "(spaceship); default rrt")
     parser.add_argument("-seed", type=int, default=None)
-    parser.add_argument("-time", type=_positive_float, default=DEFAULT_TIME_LIMIT, metavar="S")
+    parser.add_argument("-time", type=positive_float, default=DEFAULT_TIME_LIMIT, metavar="S")
     parser.add_argument("-stats", action="store_true",
                         help="print one line of key=value statistics on stderr")
     return parser

@@ -11,6 +11,7 @@ import dataclasses
 import random
 import sys
 
+from planning_core.cli_args import OneLineErrorParser, positive_float
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
@@ -24,23 +25,6 @@ EXIT_USAGE = 2
 EXIT_NO_SOLUTION = 3
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one usage line and one error line, exit 2
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"rrt_cli: error: {message}\n")
-        raise SystemExit(EXIT_USAGE)
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive finite number")
-    return value
 
 
 def _positive_int(text: str) -> int:
@@ -61,8 +45,8 @@ def _seed(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
-        prog="run.sh",
+    parser = OneLineErrorParser(
+        prog="rrt_cli",
         description="Plan on a grid map read from stdin (the .sw format); print the "
                     "trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution "
@@ -78,7 +62,7 @@ def build_parser() -> argparse.ArgumentParser:
                         help="planning algorithm (default: rrt)")
     parser.add_argument("-seed", type=_seed, default=None,
                         help="random seed; the same seed gives the same output byte for byte")
-    parser.add_argument("-time", type=_positive_float, default=DEFAULT_TIME_LIMIT,
+    parser.add_argument("-time", type=positive_float, default=DEFAULT_TIME_LIMIT,
                         metavar="S", help=f"time limit in seconds (default: {DEFAULT_TIME_LIMIT:g})")
     parser.add_argument("-iterations", type=_positive_int, default=DEFAULT_ITERATIONS,
                         metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")

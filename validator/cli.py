@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import signal
 import stat
 import sys
 from typing import Sequence
 
+from planning_core.cli_args import OneLineErrorParser, positive_float
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
 from planning_core.vehicles import Vehicle
@@ -35,25 +35,8 @@ DEFAULT_PDF = "tree-viz.pdf"
 PROG = "rrt-validator"
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # usage and one error line on stderr, exit 2
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"{PROG}: error: {message}\n")
-        raise SystemExit(EXIT_USAGE)
-
-
-def _timeout(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number of seconds")
-    return value
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = OneLineErrorParser(
         prog=PROG,
         usage=f"{PROG} [-ugrad | -grad] [-left] [-strict] [-noviz] [-o FILE] [-timeout S] "
               "[-json] -- PLANNER [ARGS...] < problem.sw",
@@ -74,7 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-noviz", action="store_true", help="do not write the PDF")
     parser.add_argument("-o", metavar="FILE", default=DEFAULT_PDF,
                         help=f"the PDF to write (default: {DEFAULT_PDF})")
-    parser.add_argument("-timeout", metavar="S", type=_timeout, default=DEFAULT_TIMEOUT,
+    parser.add_argument("-timeout", metavar="S", type=positive_float, default=DEFAULT_TIMEOUT,
                         help=f"kill the planner's process group after S seconds "
                              f"(default: {DEFAULT_TIMEOUT:g}); exit status 3")
     parser.add_argument("-json", action="store_true",
