@@ -13,65 +13,21 @@ import random
 
 import pytest
 
-from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle, spaceship
 from rrt_cli.planners import PLANNERS, kpiece
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from tests.conftest import COURSE_PROBLEMS, run_planner
+from tests.planners import ship_planner_testlib
+from tests.planners.ship_planner_testlib import GAP_WALL, SHIPS, WALLED_GOAL, ZIGZAG
 from validator.checks import validate_output
 
-SHIPS = [Vehicle.SPACESHIP, Vehicle.LEFT_SPACESHIP]
 SEEDS = range(20)
-ITERATION_CAP = 200_000
-
-# Small maps made for these tests: a wall with a one-cell gap, and a zigzag of
-# two-cell corridors.
-GAP_WALL = """8
-5
-___#____
-___#____
-________
-___#____
-___#____
-1.5 1.5
-6.5 3.5
-"""
-ZIGZAG = """6
-6
-______
-_####_
-______
-_####_
-______
-______
-0.5 0.5
-0.5 5.5
-"""
-# The goal's cell is walled in: nothing can reach it.
-WALLED_GOAL = """5
-5
-_____
-_###_
-_#_#_
-_###_
-_____
-0.5 0.5
-2.5 2.5
-"""
 
 
 def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,
                        params: kpiece.KPIECEParams = kpiece.KPIECEParams()):
-    problem = parse_problem(problem_text)
-    stop = StopCondition(time_limit=120, max_iterations=ITERATION_CAP)
-    result = kpiece.solve(problem, vehicle, stop, random.Random(seed), params)
-    assert result.solved, (result.status, result.stats)
-    output = format_plan(result.trajectory, result.tree)
-    report = validate_output(problem, vehicle, output)
-    assert report.valid, report.first_failure
-    assert len(result.tree) == result.stats.tree_nodes - 1
-    return result, output
+    return ship_planner_testlib.solve_and_validate(kpiece, problem_text, vehicle, seed, params)
 
 
 @pytest.mark.parametrize("vehicle", SHIPS, ids=lambda v: v.value)
