@@ -50,7 +50,7 @@ from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle, spaceship
 from planning_core.world import GridWorld
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import _tree, _trajectory, start_state
+from rrt_cli.planners.rrt import start_state, trajectory_rows, tree_rows
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
 _GOAL_DISTANCE_OFFSET = 1e-3
@@ -295,8 +295,8 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
         return cell
 
     def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
-        return PlanResult(status, _trajectory(states, parents, controls, vehicle, goal_node),
-                          _tree(states, parents, controls, vehicle),
+        return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
+                          tree_rows(states, parents, controls, vehicle),
                           PlanStats(iteration - 1, len(states), time.perf_counter() - began),
                           message)
 

@@ -46,7 +46,7 @@ from planning_core.vehicles import Vehicle, spaceship
 from planning_core.world import GridWorld
 from rrt_cli.nearest import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import _trajectory, _tree, sample_target, start_state
+from rrt_cli.planners.rrt import sample_target, start_state, trajectory_rows, tree_rows
 
 
 @dataclass(frozen=True)
@@ -127,8 +127,8 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
     iterations = 0
 
     def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
-        return PlanResult(status, _trajectory(states, parents, controls, vehicle, goal_node),
-                          _tree(states, parents, controls, vehicle),
+        return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
+                          tree_rows(states, parents, controls, vehicle),
                           PlanStats(iterations, len(states), time.perf_counter() - began),
                           message)
 

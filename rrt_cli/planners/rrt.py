@@ -97,8 +97,8 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
     index.add(*problem.start)
 
     def result(status: PlanStatus, goal_node: int | None, iterations: int, message=""):
-        return PlanResult(status, _trajectory(states, parents, controls, vehicle, goal_node),
-                          _tree(states, parents, controls, vehicle), PlanStats(
+        return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
+                          tree_rows(states, parents, controls, vehicle), PlanStats(
                               iterations, len(states), time.perf_counter() - began), message)
 
     if (problem.start[0] - gx) ** 2 + (problem.start[1] - gy) ** 2 <= tolerance2:
@@ -139,7 +139,9 @@ def _path_to(parents: list[int], node: int) -> list[int]:
     return path
 
 
-def _trajectory(states, parents, controls, vehicle: Vehicle, goal_node: int | None):
+def trajectory_rows(states, parents, controls, vehicle: Vehicle, goal_node: int | None):
+    """The output's trajectory for a tree stored as parallel lists (SPEC 2 rows),
+    from the root to ``goal_node``; empty when there is no goal node."""
     if goal_node is None:
         return ()
     path = _path_to(parents, goal_node)
@@ -152,7 +154,9 @@ def _trajectory(states, parents, controls, vehicle: Vehicle, goal_node: int | No
     return tuple(states[path[k]] + controls[path[k + 1]] for k in range(len(path) - 1))
 
 
-def _tree(states, parents, controls, vehicle: Vehicle):
+def tree_rows(states, parents, controls, vehicle: Vehicle):
+    """The output's tree section: one row per non-root node (parent state, then the
+    child's state for the point vehicle or the edge's control for a spaceship)."""
     if vehicle is Vehicle.POINT:
         return tuple(states[parents[k]] + states[k] for k in range(1, len(states)))
     return tuple(states[parents[k]] + controls[k] for k in range(1, len(states)))
