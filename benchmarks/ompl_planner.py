@@ -25,10 +25,10 @@ try:
 except ModuleNotFoundError:  # run as a script from a checkout that is not installed
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from benchmarks import ompl_adapters
-from planning_core.cli_args import OneLineErrorParser, positive_float
+from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
+                                    vehicle_from_flags)
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import ProblemFormatError, parse_problem
-from planning_core.vehicles import Vehicle
 
 EXIT_SOLVED = 0
 EXIT_USAGE = 2
@@ -42,9 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = OneLineErrorParser(prog="ompl_planner",
                      description="Plan with OMPL on a .sw problem read from stdin; print "
                                  "the trajectory and the tree on stdout.")
-    parser.add_argument("-ugrad", action="store_true", help="point vehicle (the default)")
-    parser.add_argument("-grad", action="store_true", help="spaceship")
-    parser.add_argument("-left", action="store_true", help="left-only spaceship")
+    add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default="rrt", choices=PLANNER_CHOICES,
                         help="rrt (geometric or control), rrtconnect (point), kpiece1 "
                              "(spaceship); default rrt")
@@ -58,10 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    if args.ugrad and (args.grad or args.left):
-        parser.error("-ugrad cannot be combined with -grad or -left")
-    vehicle = (Vehicle.LEFT_SPACESHIP if args.left else
-               Vehicle.SPACESHIP if args.grad else Vehicle.POINT)
+    vehicle = vehicle_from_flags(parser, args)
     if args.planner not in ompl_adapters.planners_for(vehicle):
         sys.stderr.write(f"ompl_planner: error: planner {args.planner!r} does not support "
                          f"the {vehicle.value} vehicle\n")

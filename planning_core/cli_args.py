@@ -8,6 +8,8 @@ import argparse
 import math
 import sys
 
+from planning_core.vehicles import Vehicle
+
 EXIT_USAGE = 2
 
 
@@ -29,3 +31,23 @@ def positive_float(text: str) -> float:
     if not (value > 0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"{text!r} must be a positive finite number")
     return value
+
+
+def add_vehicle_flags(parser: argparse.ArgumentParser, title: str) -> None:
+    """The course's vehicle flags, spelled as the course spells them."""
+    group = parser.add_argument_group(title)
+    group.add_argument("-ugrad", action="store_true",
+                       help="point vehicle <x, y> moving straight (the default)")
+    group.add_argument("-grad", action="store_true",
+                       help="spaceship <x, y, dx, dy> with thrust <theta, s>")
+    group.add_argument("-left", action="store_true",
+                       help="spaceship that only thrusts ahead or left (implies -grad)")
+
+
+def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> Vehicle:
+    """The vehicle the -ugrad/-grad/-left flags name; a contradiction is a usage error."""
+    if args.ugrad and (args.grad or args.left):
+        parser.error("-ugrad cannot be combined with -grad or -left")
+    if args.left:
+        return Vehicle.LEFT_SPACESHIP
+    return Vehicle.SPACESHIP if args.grad else Vehicle.POINT

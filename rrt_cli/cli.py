@@ -11,7 +11,8 @@ import dataclasses
 import random
 import sys
 
-from planning_core.cli_args import OneLineErrorParser, positive_float
+from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
+                                    vehicle_from_flags)
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
@@ -51,13 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution "
                "within the limits.")
-    vehicle = parser.add_argument_group("vehicle (default: point vehicle)")
-    vehicle.add_argument("-ugrad", action="store_true",
-                         help="point vehicle <x, y> moving straight (the default)")
-    vehicle.add_argument("-grad", action="store_true",
-                         help="spaceship <x, y, dx, dy> with thrust <theta, s>")
-    vehicle.add_argument("-left", action="store_true",
-                         help="spaceship that only thrusts ahead or left (implies -grad)")
+    add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default="rrt", choices=sorted(PLANNERS),
                         help="planning algorithm (default: rrt)")
     parser.add_argument("-seed", type=_seed, default=None,
@@ -73,23 +68,10 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def choose_vehicle(args: argparse.Namespace) -> Vehicle:
-    if args.ugrad and (args.grad or args.left):
-        raise ValueError("-ugrad cannot be combined with -grad or -left")
-    if args.left:
-        return Vehicle.LEFT_SPACESHIP
-    if args.grad:
-        return Vehicle.SPACESHIP
-    return Vehicle.POINT
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    try:
-        vehicle = choose_vehicle(args)
-    except ValueError as error:
-        parser.error(str(error))
+    vehicle = vehicle_from_flags(parser, args)
     if args.smooth and vehicle is not Vehicle.POINT:
         parser.error("-smooth works on the point vehicle only")
     entry = PLANNERS[args.planner]

@@ -18,7 +18,8 @@ import stat
 import sys
 from typing import Sequence
 
-from planning_core.cli_args import OneLineErrorParser, positive_float
+from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
+                                    vehicle_from_flags)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
 from planning_core.vehicles import Vehicle
@@ -45,12 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "(SPEC 3, checks 1-7), print the verdict and draw the tree in a PDF.",
         epilog="Exit status: 0 valid, 1 invalid, 2 usage error or bad problem, "
                "3 the planner could not be started or timed out.")
-    parser.add_argument("-ugrad", action="store_true",
-                        help="point vehicle <x, y> (the default)")
-    parser.add_argument("-grad", action="store_true",
-                        help="spaceship <x, y, dx, dy> with controls <theta, s>")
-    parser.add_argument("-left", action="store_true",
-                        help="left-only spaceship: theta mod 2 pi in [0, pi] (implies -grad)")
+    add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-strict", action="store_true",
                         help="a point segment cutting a blocked cell's corner between the "
                              "0.05 samples is a failure, not a warning")
@@ -63,14 +59,6 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-json", action="store_true",
                         help="print one JSON object instead of the verdict text")
     return parser
-
-
-def choose_vehicle(args: argparse.Namespace) -> Vehicle:
-    if args.ugrad and (args.grad or args.left):
-        raise ValueError("-ugrad cannot be combined with -grad or -left")
-    if args.left:
-        return Vehicle.LEFT_SPACESHIP
-    return Vehicle.SPACESHIP if args.grad else Vehicle.POINT
 
 
 def _stdin_label() -> str:
@@ -186,10 +174,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         own, command = argv, []
     parser = build_parser()
     args = parser.parse_args(own)  # -h prints the help and exits 0
-    try:
-        vehicle = choose_vehicle(args)
-    except ValueError as error:
-        parser.error(str(error))
+    vehicle = vehicle_from_flags(parser, args)
     if not command:
         parser.error("no planner: put the planner's command after --, e.g. "
                      f"{PROG} -grad -- ./run.sh -grad < problem.sw")
