@@ -11,7 +11,7 @@ and full thrust at ``angles`` evenly spaced angles over the vehicle's theta
 range). Each iteration:
 
 1. draws a target (the goal with probability ``goal_bias``, else a uniform
-   point of the map);
+   point of the map; but see the departure below);
 2. finds the reachable state closest to it (by position) over the whole tree,
    and so the node that owns it;
 3. rejects the target when that node itself is closer to it than that closest
@@ -31,16 +31,24 @@ exactly on its node, so the answer is almost always one level down). A node
 whose reachable set holds a state within ``goal_tolerance`` of the goal ends the
 search at once.
 
+One departure from the paper, on by default (``RGRRTParams.goal_distance``):
+the goal-biased iterations do not use the goal as a target; each adds instead
+the unused reachable state of the whole tree that lies nearest the goal along
+the map's free cells. On a maze the straight line to the goal points into
+walls, and a target pulls only the node nearest it in a straight line.
+
 Reachable positions live in a :class:`~rrt_cli.nearest.QuadtreeNearest`; each
 point's index maps to its node and control.
 """
 
 from __future__ import annotations
 
+import heapq
 import random
 import time
 from dataclasses import dataclass
 
+from planning_core.cell_distance import CellDistanceToGoal
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle, spaceship
 from planning_core.world import GridWorld
@@ -71,7 +79,17 @@ class RGRRTParams:
     uniform in [0, 0.5]), drawn once when the node is added. 0: the reachable
     set is the fixed one only, as in the paper."""
 
+    goal_distance: str = "cells"
+    """What a goal-biased iteration does. "cells" (default): it adds the unused
+    reachable state of the whole tree that is nearest the goal along the free
+    cells (:class:`planning_core.cell_distance.CellDistanceToGoal`), a greedy
+    best-first step. "euclidean": the goal is that iteration's random target,
+    as the paper has it. Seed 1, 30 s, ``-grad``: maze-20 in 0.11 s against
+    16 s, maze-50 in 14 s and open-100 in 1.2 s against not at all."""
+
     def __post_init__(self):
+        if self.goal_distance not in ("euclidean", "cells"):
+            raise ValueError("goal_distance must be 'euclidean' or 'cells'")
         if not 0.0 <= self.goal_bias <= 1.0:
             raise ValueError("goal_bias must be in [0, 1]")
         if not self.goal_tolerance > 0.0:
@@ -125,6 +143,12 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
     # Node k's reachable states are the ids reach_first[k] .. reach_first[k + 1] - 1.
     reach_first: list[int] = [0]
     iterations = 0
+    guided = params.goal_distance == "cells"
+    if guided:
+        cell_distance = CellDistanceToGoal(problem)
+        # Every reachable state by its distance to the goal; used ones are
+        # skipped when they come to the top.
+        by_distance: list[tuple[float, int]] = []
 
     def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
         return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
@@ -159,6 +183,8 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
             reach_control.append(control)
             reach_used.append(0)
             reach_child.append(-1)
+            if guided:
+                heapq.heappush(by_distance, (cell_distance(end[0], end[1]), len(reach_states) - 1))
         reach_first.append(len(reach_states))
         return None
 
@@ -177,6 +203,24 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
             return result(PlanStatus.UNREACHABLE, None,
                           "no reachable state is left to extend to")
         iterations += 1
+        if guided and rng.random() < params.goal_bias:
+            # Best-first toward the goal along the free cells (goal_distance).
+            chosen = -1
+            while by_distance:
+                _, candidate = heapq.heappop(by_distance)
+                if not reach_used[candidate]:
+                    chosen = candidate
+                    break
+            if chosen < 0:
+                continue
+            owner = reach_owner[chosen]
+            reach_used[chosen] = 1
+            node = add_node(owner, reach_states[chosen], reach_control[chosen])
+            reach_child[chosen] = node
+            goal_node = expand_reachable(node)
+            if goal_node is not None:
+                return result(PlanStatus.SOLVED, goal_node)
+            continue
         if rng.random() < params.goal_bias:
             tx, ty = gx, gy
         else:

@@ -4,6 +4,7 @@ that must solve and pass the validator's checks."""
 from __future__ import annotations
 
 import random
+from pathlib import Path
 
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
@@ -49,6 +50,12 @@ _____
 0.5 0.5
 2.5 2.5
 """
+
+
+# The suite's 20x20 maze (1-cell corridors): the straight line to the goal
+# misleads there, which the default goal_distance="cells" is for.
+MAZE_20 = (Path(__file__).resolve().parents[2] / "benchmarks" / "problems"
+           / "maze-20.sw").read_text()
 
 
 def solve_and_validate(planner, problem_text: str, vehicle: Vehicle, seed: int, params):

@@ -19,7 +19,7 @@ from rrt_cli.planners import PLANNERS, kpiece
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from tests.conftest import COURSE_PROBLEMS, run_planner
 from tests.planners import ship_planner_testlib
-from tests.planners.ship_planner_testlib import GAP_WALL, SHIPS, WALLED_GOAL, ZIGZAG
+from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, SHIPS, WALLED_GOAL, ZIGZAG
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -45,9 +45,18 @@ def test_generated_maps_solved_and_valid(text, vehicle, seed):
 
 
 def test_published_variant_without_goal_steering_is_valid():
-    params = kpiece.KPIECEParams(goal_controls=1)
+    params = kpiece.KPIECEParams(goal_controls=1, goal_distance="euclidean")
     for seed in range(3):
         solve_and_validate(COURSE_PROBLEMS[1].read_text(), Vehicle.SPACESHIP, seed, params)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_maze_solved_along_the_free_cells(seed):
+    """The default measures the goal distance along the corridors; the paper's
+    straight line is kept as an option and still gives valid answers."""
+    solve_and_validate(MAZE_20, Vehicle.SPACESHIP, seed)
+    solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, seed,
+                       kpiece.KPIECEParams(goal_distance="euclidean"))
 
 
 def test_velocity_projection_and_set_cell_size_are_valid():
@@ -98,7 +107,7 @@ def test_point_vehicle_is_refused():
 
 @pytest.mark.parametrize("bad", [dict(good_score_factor=0.0), dict(bad_score_factor=1.5),
                                  dict(min_steps=3, max_steps=2), dict(cell_size=-1.0),
-                                 dict(goal_controls=0)])
+                                 dict(goal_controls=0), dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
         kpiece.KPIECEParams(**bad)

@@ -20,7 +20,7 @@ from rrt_cli.planners import PLANNERS, rgrrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from tests.conftest import COURSE_PROBLEMS, run_planner
 from tests.planners import ship_planner_testlib
-from tests.planners.ship_planner_testlib import GAP_WALL, SHIPS, WALLED_GOAL, ZIGZAG
+from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, SHIPS, WALLED_GOAL, ZIGZAG
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -46,7 +46,8 @@ def test_generated_maps_solved_and_valid(text, vehicle, seed):
 
 
 @pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)), dict(thrusts=(0.6,)),
-                                 dict(random_controls=-1), dict(goal_bias=1.5)])
+                                 dict(random_controls=-1), dict(goal_bias=1.5),
+                                 dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
         rgrrt.RGRRTParams(**bad)
@@ -70,6 +71,15 @@ def test_no_node_is_added_twice():
     result, _ = solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, 4)
     edges = [tuple(row) for row in result.tree]
     assert len(edges) == len(set(edges))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_maze_solved_along_the_free_cells(seed):
+    """The default's goal-biased steps go best-first along the corridors; the
+    paper's goal-as-target is kept as an option and still gives valid answers."""
+    solve_and_validate(MAZE_20, Vehicle.SPACESHIP, seed)
+    solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, seed,
+                       rgrrt.RGRRTParams(goal_distance="euclidean"))
 
 
 def test_extra_random_controls_are_valid():

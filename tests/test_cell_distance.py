@@ -1,0 +1,81 @@
+"""Distance to the goal through the free cells (the guided planners' heuristic)."""
+
+import math
+import random
+
+from planning_core.cell_distance import CellDistanceToGoal
+from planning_core.problem_text import parse_problem
+from planning_core.world import connected_free_cells
+
+
+def problem(rows: list[str], start, goal):
+    text = f"{len(rows[0])}\n{len(rows)}\n" + "\n".join(rows) + "\n"
+    return parse_problem(text + f"{start[0]}\n{start[1]}\n{goal[0]}\n{goal[1]}\n")
+
+
+OPEN = problem(["_____"] * 5, (0.5, 0.5), (4.5, 4.5))
+# Rows are top first: the wall is row y=2, with its gap at x=0.
+WALLED = problem(["_____", "_____", "_####", "_____", "_____"], (4.5, 0.5), (4.5, 4.5))
+
+
+def test_goal_cell_is_straight_line_distance():
+    distance = CellDistanceToGoal(OPEN)
+    assert distance(4.5, 4.5) == 0.0
+    assert math.isclose(distance(4.2, 4.9), math.hypot(0.3, 0.4))
+
+
+def test_open_map_gives_octile_distance_at_cell_centres():
+    distance = CellDistanceToGoal(OPEN)
+    for x in range(5):
+        for y in range(5):
+            dx, dy = 4 - x, 4 - y
+            octile = max(dx, dy) + (math.sqrt(2) - 1) * min(dx, dy)
+            assert math.isclose(distance(x + 0.5, y + 0.5), octile, abs_tol=1e-12)
+
+
+def test_value_falls_along_a_straight_run_toward_the_goal():
+    distance = CellDistanceToGoal(OPEN)
+    values = [distance(0.5 + k * 0.01, 4.5) for k in range(400)]
+    assert all(b < a for a, b in zip(values, values[1:]))
+
+
+def test_a_wall_makes_the_way_round_count():
+    distance = CellDistanceToGoal(WALLED)
+    # Just below the wall, right under the goal: 2 units straight, but the gap is at x=0.
+    below = distance(4.5, 1.5)
+    assert below > 8.0
+    assert below > distance(0.5, 1.5) > distance(0.5, 3.5)
+
+
+def test_blocked_outside_and_cut_off_positions_are_unreachable():
+    cut_off = problem(["___", "###", "___"], (0.5, 0.5), (0.5, 2.5))
+    distance = CellDistanceToGoal(cut_off, unreachable=1e9)
+    assert distance(1.5, 1.5) == 1e9          # blocked cell
+    assert distance(-0.1, 2.5) == 1e9         # outside the map
+    assert distance(3.0, 2.5) == 1e9          # x == W is outside (half-open cells)
+    assert distance(0.5, 0.5) == 1e9          # free, but walled off from the goal
+    assert distance(2.5, 2.5) < 1e9
+
+
+def test_no_diagonal_step_through_a_blocked_corner():
+    # Free cells (0,0) and (1,1) touch only at a corner between two blocked cells.
+    corner = problem(["#_", "_#"], (0.5, 0.5), (1.5, 1.5))
+    assert CellDistanceToGoal(corner, unreachable=1e9)(0.5, 0.5) == 1e9
+
+
+def test_every_free_cell_joined_to_the_goal_gets_a_finite_distance():
+    rng = random.Random(5)
+    for _ in range(20):
+        rows = ["".join("#" if rng.random() < 0.3 else "_" for _ in range(9)) for _ in range(7)]
+        rows[-1] = "_" + rows[-1][1:]    # start cell (bottom-left) free
+        rows[0] = rows[0][:-1] + "_"     # goal cell (top-right) free
+        p = problem(rows, (0.5, 0.5), (8.5, 6.5))
+        distance = CellDistanceToGoal(p, unreachable=math.inf)
+        joined = connected_free_cells(p, (8, 6), diagonal=False)
+        for index, linked in enumerate(joined):
+            row, column = divmod(index, 9)
+            value = distance(column + 0.5, row + 0.5)
+            if linked:
+                assert math.isfinite(value)
+                # Never shorter than the straight line between the centres.
+                assert value >= math.hypot(8 - column, 6 - row) - 1e-9
