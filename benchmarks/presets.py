@@ -8,6 +8,9 @@
 * ``course``: the README's planner table (issue 2): the course problems and the
   200x200 random field, all three vehicles, 5 seeds; 30 s (point) and 60 s
   (ships) limits. Run it with ``--planners rrt``.
+* ``sweep``: issue 5's acceptance: every problem up to 100x100 and the course
+  problems, all three vehicles, 20 seeds, 30 s limit (the planner's default).
+  Hours on 2 cores; run it with ``--planners`` and ``--vehicles`` in parts.
 * ``full``: every problem to 500x500 for the point vehicle (10 s limit), to
   200x200 for the spaceship (120 s) and to 50x50 for the left-only ship (30 s),
   10 seeds (5 for the ships). Hours on 2 cores, mostly runs that use their
@@ -65,6 +68,11 @@ PRESETS = {
         VehiclePlan(Vehicle.SPACESHIP, 60.0, 10, 5, ("course-*",), extra=("random-d20-200",)),
         VehiclePlan(Vehicle.LEFT_SPACESHIP, 60.0, 10, 5, ("course-*",),
                     extra=("random-d20-200",)),
+    )),
+    "sweep": Preset("sweep", (
+        VehiclePlan(Vehicle.POINT, 30.0, 100, 20),
+        VehiclePlan(Vehicle.SPACESHIP, 30.0, 100, 20),
+        VehiclePlan(Vehicle.LEFT_SPACESHIP, 30.0, 100, 20),
     )),
     "full": Preset("full", (
         VehiclePlan(Vehicle.POINT, 10.0, 500, 10),
