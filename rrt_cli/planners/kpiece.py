@@ -59,7 +59,7 @@ from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle, spaceship
 from planning_core.world import GridWorld
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import start_state, trajectory_rows, tree_rows
+from rrt_cli.planners.rrt import ship_theta_range, start_state, trajectory_rows, tree_rows
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
 _GOAL_DISTANCE_OFFSET = 1e-3
@@ -275,8 +275,7 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
     blocked, width, height = world.blocked, world.width, world.height
     gx, gy = problem.goal
     tolerance2 = params.goal_tolerance * params.goal_tolerance * (1 - 1e-9)
-    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
-                   else spaceship.THETA_RANGE)
+    theta_range = ship_theta_range(vehicle)
     integrate = spaceship.integrate
 
     inverse_cell = 1.0 / (params.cell_size or derived_cell_size(problem))

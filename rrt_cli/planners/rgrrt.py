@@ -54,7 +54,8 @@ from planning_core.vehicles import Vehicle, spaceship
 from planning_core.world import GridWorld
 from rrt_cli.nearest import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import sample_target, start_state, trajectory_rows, tree_rows
+from rrt_cli.planners.rrt import (
+    sample_target, ship_theta_range, start_state, trajectory_rows, tree_rows)
 
 
 @dataclass(frozen=True)
@@ -124,8 +125,7 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
     blocked, width, height = world.blocked, world.width, world.height
     gx, gy = problem.goal
     tolerance2 = params.goal_tolerance * params.goal_tolerance * (1 - 1e-9)
-    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
-                   else spaceship.THETA_RANGE)
+    theta_range = ship_theta_range(vehicle)
     fixed_controls = reachable_controls(params, theta_range)
     integrate = spaceship.integrate
 
@@ -188,6 +188,13 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
         reach_first.append(len(reach_states))
         return None
 
+    def take_reachable(chosen: int) -> int | None:
+        """Make reachable state ``chosen`` a node; a goal node it leads to, if any."""
+        reach_used[chosen] = 1
+        node = add_node(reach_owner[chosen], reach_states[chosen], reach_control[chosen])
+        reach_child[chosen] = node
+        return expand_reachable(node)
+
     if (problem.start[0] - gx) ** 2 + (problem.start[1] - gy) ** 2 <= tolerance2:
         return result(PlanStatus.SOLVED, 0)
     goal_node = expand_reachable(0)
@@ -213,11 +220,7 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
                     break
             if chosen < 0:
                 continue
-            owner = reach_owner[chosen]
-            reach_used[chosen] = 1
-            node = add_node(owner, reach_states[chosen], reach_control[chosen])
-            reach_child[chosen] = node
-            goal_node = expand_reachable(node)
+            goal_node = take_reachable(chosen)
             if goal_node is not None:
                 return result(PlanStatus.SOLVED, goal_node)
             continue
@@ -247,9 +250,6 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
         rx, ry = reach_states[chosen][0], reach_states[chosen][1]
         if (ox - tx) ** 2 + (oy - ty) ** 2 < (rx - tx) ** 2 + (ry - ty) ** 2:
             continue  # the target lies behind the node: no move of it gets closer
-        reach_used[chosen] = 1
-        node = add_node(owner, reach_states[chosen], reach_control[chosen])
-        reach_child[chosen] = node
-        goal_node = expand_reachable(node)
+        goal_node = take_reachable(chosen)
         if goal_node is not None:
             return result(PlanStatus.SOLVED, goal_node)

@@ -50,9 +50,13 @@ def make_steering(world: GridWorld, vehicle: Vehicle, params) -> PointSteering |
     if vehicle is Vehicle.POINT:
         return PointSteering(world, params.partial_extension, params.min_extension,
                              params.wall_clearance)
-    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
-                   else spaceship.THETA_RANGE)
-    return SpaceshipSteering(world, theta_range, params.controls_per_extension)
+    return SpaceshipSteering(world, ship_theta_range(vehicle), params.controls_per_extension)
+
+
+def ship_theta_range(vehicle: Vehicle) -> float:
+    """Random thetas are drawn from ``[0, range)``: the left-only ship's is half a turn."""
+    return (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
+            else spaceship.THETA_RANGE)
 
 
 def goal_certainly_unreachable(problem: Problem, vehicle: Vehicle) -> bool:
