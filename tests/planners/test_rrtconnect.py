@@ -1,6 +1,8 @@
 """RRT-Connect (point vehicle): every course problem x 20 seeds and a few small
-generated maps, each output checked by the validator with -strict; the limits;
-reproducibility; the CLI's refusal of other vehicles."""
+generated maps, each output checked by the validator with -strict, with
+frontier targets (the default) and without (the published algorithm); the
+suite's 100x100 maze; the limits; reproducibility; the CLI's refusal of other
+vehicles."""
 
 import random
 import statistics
@@ -14,10 +16,11 @@ from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rrt, rrtconnect
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_PROBLEMS, run_planner
+from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner
 from validator.checks import validate_output
 
 SEEDS = range(20)
+PUBLISHED = rrtconnect.Params(frontier_targets=0.0)
 
 
 def assert_valid(problem: Problem, result) -> None:
@@ -46,20 +49,52 @@ def test_course_problems_20_seeds_all_valid(path):
     ("random-15", random_field(15, 0.3, random.Random(3))),
     ("narrow-14", narrow_passage(14, random.Random(2))),
 ], ids=lambda value: value if isinstance(value, str) else "")
-def test_generated_maps_valid(name, problem):
+@pytest.mark.parametrize("params", [rrtconnect.Params(), PUBLISHED], ids=["frontier", "uniform"])
+def test_generated_maps_valid(name, problem, params):
     for seed in range(5):
         result = rrtconnect.solve(problem, Vehicle.POINT, StopCondition(time_limit=30),
+                                  random.Random(seed), params)
+        assert_valid(problem, result)
+
+
+def test_solves_the_100x100_maze():
+    # Uniform targets need about 80 s here (1.4 million iterations); the time
+    # limit is generous so a slow machine does not fail it, the iteration
+    # limit is what a regression would hit.
+    problem = parse_problem((ROOT / "benchmarks" / "problems" / "maze-100.sw").read_text())
+    for seed in range(3):
+        result = rrtconnect.solve(problem, Vehicle.POINT,
+                                  StopCondition(time_limit=120, max_iterations=100_000),
                                   random.Random(seed))
         assert_valid(problem, result)
 
 
-def test_grows_fewer_nodes_than_rrt_on_a_maze():
+def test_frontier_targets_grow_fewer_nodes_on_a_maze():
+    # Node counts are deterministic per seed, so this is not a timing test.
+    problem = maze(31, random.Random(4))
+    frontier, uniform = [], []
+    for seed in range(5):
+        frontier.append(rrtconnect.solve(problem, Vehicle.POINT, StopCondition(30),
+                                         random.Random(seed)).stats.tree_nodes)
+        uniform.append(rrtconnect.solve(problem, Vehicle.POINT, StopCondition(30),
+                                        random.Random(seed), PUBLISHED).stats.tree_nodes)
+    assert statistics.median(frontier) < statistics.median(uniform) / 2
+
+
+@pytest.mark.parametrize("share", [-0.1, 1.5])
+def test_frontier_share_outside_0_1_is_refused(share):
+    with pytest.raises(ValueError, match="frontier_targets"):
+        rrtconnect.Params(frontier_targets=share)
+
+
+@pytest.mark.parametrize("params", [rrtconnect.Params(), PUBLISHED], ids=["frontier", "uniform"])
+def test_grows_fewer_nodes_than_rrt_on_a_maze(params):
     # Node counts are deterministic per seed, so this is not a timing test.
     problem = maze(21, random.Random(7))
     ours, theirs = [], []
     for seed in range(7):
         ours.append(rrtconnect.solve(problem, Vehicle.POINT, StopCondition(30),
-                                     random.Random(seed)).stats.tree_nodes)
+                                     random.Random(seed), params).stats.tree_nodes)
         theirs.append(rrt.solve(problem, Vehicle.POINT, StopCondition(30),
                                 random.Random(seed)).stats.tree_nodes)
     assert statistics.median(ours) < statistics.median(theirs)
