@@ -5,7 +5,7 @@ for systems with complex dynamics", IEEE Trans. Robotics 28(1), 2012).
 
 KPIECE1 grows one tree of motions without a nearest-neighbour search and
 without random targets. It lays a grid over a projection of the state (here the
-position, optionally the velocity too) and keeps, per grid cell, the motions
+position and the velocity by default, or the position alone) and keeps, per grid cell, the motions
 that end in it. Each iteration:
 
 1. picks a cell: an exterior cell (fewer than ``2 * dims`` axis neighbours in
@@ -77,9 +77,15 @@ class KPIECEParams:
     larger ones: the width of a maze corridor. (Until 2026-11-23 it was
     ``max(0.5, max(W, H) / 40)``, 2.5 units on a 100x100 map: cells that span a
     maze's walls, in which it solved no 50x50 or 100x100 maze in 30 s.)"""
-    velocity_cell_size: float | None = None
-    """With a value, the projection is 4-D ``(x, y, dx, dy)`` and velocities are
-    binned at this size; None (default): the projection is the position only."""
+    velocity_cell_size: float | None = 0.2
+    """With a value (default 0.2 map units per step), the projection is 4-D
+    ``(x, y, dx, dy)`` and velocities are binned at this size; None: the
+    projection is the position only. With the position alone, a cell first
+    crossed at speed counts as explored, and the slow states a ship needs to
+    take a maze's corners there are pruned as uninteresting; seeds 1-3, 30 s:
+    the left-only ship solved maze-100 in a median 3.2 s with 0.2 against 0/3
+    with None (maze-50 seed 1: 2.3 s against 106 s), ``-grad`` maze-100 1.4 s
+    against 8.9 s; elsewhere within noise of None (0.1 did about as well)."""
     goal_bias: float = 0.05
     """Probability of expanding the motion closest to the goal instead of a
     cell's motion (OMPL's default, 0.05)."""

@@ -54,8 +54,9 @@ _____
 
 # The suite's 20x20 maze (1-cell corridors): the straight line to the goal
 # misleads there, which the default goal_distance="cells" is for.
-MAZE_20 = (Path(__file__).resolve().parents[2] / "benchmarks" / "problems"
-           / "maze-20.sw").read_text()
+PROBLEMS_DIR = Path(__file__).resolve().parents[2] / "benchmarks" / "problems"
+MAZE_20 = (PROBLEMS_DIR / "maze-20.sw").read_text()
+MAZE_50 = (PROBLEMS_DIR / "maze-50.sw").read_text()
 
 
 def solve_and_validate(planner, problem_text: str, vehicle: Vehicle, seed: int, params):
