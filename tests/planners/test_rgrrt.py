@@ -14,13 +14,16 @@ import random
 
 import pytest
 
+from planning_core.cell_distance import CellDistanceToGoal
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle, spaceship
+from planning_core.world import GridWorld
 from rrt_cli.planners import PLANNERS, rgrrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from tests.conftest import COURSE_PROBLEMS, run_planner
 from tests.planners import ship_planner_testlib
-from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, SHIPS, WALLED_GOAL, ZIGZAG
+from tests.planners.ship_planner_testlib import (
+    GAP_WALL, MAZE_20, MAZE_50, SHIPS, WALLED_GOAL, ZIGZAG)
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -47,6 +50,7 @@ def test_generated_maps_solved_and_valid(text, vehicle, seed):
 
 @pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)), dict(thrusts=(0.6,)),
                                  dict(random_controls=-1), dict(goal_bias=1.5),
+                                 dict(guided_share=-0.1),
                                  dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
@@ -60,7 +64,12 @@ def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
     params = rgrrt.RGRRTParams()
     fixed = set(rgrrt.reachable_controls(params, theta_range))
     assert len(fixed) == 1 + params.angles * len(params.thrusts)
-    assert all(0.0 <= theta < theta_range for theta, _ in fixed)
+    # A full turn is half-open; the left-only ship's half turn is closed, so
+    # its set holds full braking (theta = pi), which the validator accepts.
+    assert all(0.0 <= theta < spaceship.THETA_RANGE for theta, _ in fixed)
+    assert max(theta for theta, _ in fixed) == (
+        spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
+        else theta_range * (params.angles - 1) / params.angles)
     result, _ = solve_and_validate(GAP_WALL, vehicle, 2)
     assert {tuple(row[4:]) for row in result.tree} <= fixed
     # The goal bias and the random targets together use more than one control.
@@ -75,11 +84,31 @@ def test_no_node_is_added_twice():
 
 @pytest.mark.parametrize("seed", range(3))
 def test_maze_solved_along_the_free_cells(seed):
-    """The default's goal-biased steps go best-first along the corridors; the
-    paper's goal-as-target is kept as an option and still gives valid answers."""
+    """The default's guided steps go best-first along the corridors; ranking
+    by position instead of the braking point, and the paper's goal-as-target,
+    are kept as options and still give valid answers."""
     solve_and_validate(MAZE_20, Vehicle.SPACESHIP, seed)
+    solve_and_validate(MAZE_20, Vehicle.LEFT_SPACESHIP, seed,
+                       rgrrt.RGRRTParams(guide_by_stopping_point=False))
     solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, seed,
                        rgrrt.RGRRTParams(goal_distance="euclidean"))
+
+
+@pytest.mark.parametrize("vehicle", SHIPS, ids=lambda v: v.value)
+def test_50x50_maze_both_ships(vehicle):
+    """Ranking by the braking point is what gets both ships round a maze's
+    corners in about a second (by position: up to tens of seconds, or not at all)."""
+    solve_and_validate(MAZE_50, vehicle, 1)
+
+
+def teststopping_point_key_ranks_a_braking_line_into_a_wall_last():
+    problem = parse_problem(GAP_WALL)   # wall at column 3, gap in row 2; goal (6.5, 3.5)
+    key = rgrrt.stopping_point_key(CellDistanceToGoal(problem), GridWorld(problem))
+    at_rest = key((2.5, 2.5, 0.0, 0.0))
+    through_gap = key((2.5, 2.5, 1.0, 0.0))     # stops at (3.5, 2.5), in the gap
+    into_wall = key((2.5, 0.5, 1.0, 0.0))       # stops inside the wall
+    assert through_gap < at_rest < into_wall
+    assert into_wall > 1e5
 
 
 def test_extra_random_controls_are_valid():
@@ -92,7 +121,7 @@ def test_left_ship_controls_stay_in_its_range():
     result, _ = solve_and_validate(ZIGZAG, Vehicle.LEFT_SPACESHIP, 1)
     for row in result.tree:
         theta, thrust = row[4], row[5]
-        assert 0.0 <= theta < spaceship.LEFT_THETA_RANGE
+        assert 0.0 <= theta <= spaceship.LEFT_THETA_RANGE
         assert 0.0 <= thrust <= spaceship.MAX_THRUST
 
 
