@@ -251,7 +251,63 @@ def check_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
     speed_target("spaceship", 1, 0.5)
     for vehicle in ("point", "spaceship"):
         speed_target(vehicle, 1, 1.0, process=True, family="course")
+    checks.extend(planner_targets(rows))
     return checks
+
+
+def _ours(rows: Sequence[RunRow], vehicle: str, planner: str,
+          family: str | None = None) -> list[RunRow]:
+    return [r for r in rows if r.vehicle == vehicle and r.planner == planner
+            and r.implementation == "ours" and (family is None or r.family == family)]
+
+
+def planner_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
+    """Issue 5's targets, each against our own RRT in the same run: on the
+    spaceships, KPIECE1 or RG-RRT at least 2x faster (median planning time) on
+    the mazes and on the narrow passages; on the point vehicle, PRM* paths at
+    least 20% shorter and RRT-Connect faster on the mazes."""
+    checks: list[TargetCheck] = []
+    for vehicle in ("spaceship", "left"):
+        for family in ("maze", "narrow"):
+            baseline = _ours(rows, vehicle, "rrt", family)
+            ratios = {planner: median_ratio(_ours(rows, vehicle, planner, family), baseline)
+                      for planner in ("kpiece", "rgrrt")}
+            ratios = {planner: ratio for planner, ratio in ratios.items() if math.isfinite(ratio)}
+            if not baseline or not ratios:
+                continue
+            checks.append(TargetCheck(
+                f"{vehicle}: kpiece or rgrrt median planning time on {family} problems at most "
+                f"0.5× our rrt's", min(ratios.values()) <= 0.5,
+                ", ".join(f"{planner} {_ratio(ratio)}" for planner, ratio in ratios.items())))
+    shorter = path_length_ratios(_ours(rows, "point", "prmstar"), _ours(rows, "point", "rrt"))
+    if shorter:
+        mean_ratio = statistics.fmean(shorter.values())
+        at_least = sum(1 for ratio in shorter.values() if ratio <= 0.8)
+        checks.append(TargetCheck(
+            "point: prmstar paths at least 20% shorter than our rrt's (mean over problems of "
+            "the median-length ratio)", mean_ratio <= 0.8,
+            f"mean ratio {_ratio(mean_ratio)}; 20% shorter on {at_least}/{len(shorter)} problems"))
+    baseline = _ours(rows, "point", "rrt", "maze")
+    ratio = median_ratio(_ours(rows, "point", "rrtconnect", "maze"), baseline)
+    if baseline and math.isfinite(ratio):
+        checks.append(TargetCheck("point: rrtconnect median planning time on maze problems "
+                                  "below our rrt's", ratio < 1.0, f"ratio {_ratio(ratio)}"))
+    return checks
+
+
+def path_length_ratios(ours: Sequence[RunRow], reference: Sequence[RunRow]) -> dict[str, float]:
+    """Per problem solved by both: median path length of ``ours`` over ``reference``'s."""
+    lengths: dict[tuple[str, bool], list[float]] = {}
+    for key, runs in (("ours", ours), ("reference", reference)):
+        for r in runs:
+            if r.solved and r.path_length is not None:
+                lengths.setdefault((r.problem, key == "ours"), []).append(r.path_length)
+    ratios = {}
+    for (problem, is_ours), mine in lengths.items():
+        theirs = lengths.get((problem, False))
+        if is_ours and theirs and statistics.median(theirs) > 0:
+            ratios[problem] = statistics.median(mine) / statistics.median(theirs)
+    return ratios
 
 
 def targets_table(rows: Sequence[RunRow]) -> list[str]:

@@ -102,3 +102,32 @@ def test_report_has_a_table_per_vehicle_targets_and_failures():
     assert ship.met is False
     speed = targets["point: rrt median planning time on all problems at most OMPL RRT's"]
     assert speed.met is True  # 0.02 s median (course) ... vs OMPL's 0.05 s
+
+
+def test_planner_targets_compare_with_our_own_rrt():
+    rows = []
+    for seed in range(3):
+        for planner, maze_time, narrow_time in (("rrt", 1.0, 1.0), ("kpiece", 0.3, 0.7),
+                                                ("rgrrt", 0.8, 0.9)):
+            rows.append(row(planner, "maze-20", seed, maze_time, vehicle="spaceship"))
+            rows.append(row(planner, "narrow-20", seed, narrow_time, vehicle="spaceship",
+                            family="narrow"))
+        for problem, rrt_length, star_length in (("maze-20", 10.0, 7.0), ("open-20", 10.0, 8.4)):
+            family = problem.split("-")[0]
+            rows.append(row("rrt", problem, seed, 0.5, length=rrt_length, family=family))
+            rows.append(row("prmstar", problem, seed, 0.9, length=star_length, family=family))
+        rows.append(row("rrtconnect", "maze-20", seed, 0.6))
+    # An unsolved run has no length and does not count toward it.
+    rows.append(row("prmstar", "open-20", 9, 10.0, solved=False, family="open"))
+    targets = {check.target: check for check in report.planner_targets(rows)}
+    maze = targets["spaceship: kpiece or rgrrt median planning time on maze problems "
+                   "at most 0.5× our rrt's"]
+    assert maze.met is True and maze.detail == "kpiece 0.30×, rgrrt 0.80×"
+    narrow = targets["spaceship: kpiece or rgrrt median planning time on narrow problems "
+                     "at most 0.5× our rrt's"]
+    assert narrow.met is False
+    assert not any(target.startswith("left:") for target in targets)  # no left-only rows
+    star = next(check for target, check in targets.items() if target.startswith("point: prmstar"))
+    assert star.met is True and "mean ratio 0.77×" in star.detail and "on 1/2 problems" in star.detail
+    connect = targets["point: rrtconnect median planning time on maze problems below our rrt's"]
+    assert connect.met is False and connect.detail == "ratio 1.20×"
