@@ -10,6 +10,7 @@ of hanging.
 
 from __future__ import annotations
 
+import math
 import random
 
 import pytest
@@ -50,7 +51,7 @@ def test_generated_maps_solved_and_valid(text, vehicle, seed):
 
 @pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)), dict(thrusts=(0.6,)),
                                  dict(random_controls=-1), dict(goal_bias=1.5),
-                                 dict(guided_share=-0.1),
+                                 dict(guided_share=-0.1), dict(goal_controls=-1),
                                  dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
@@ -70,11 +71,25 @@ def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
     assert max(theta for theta, _ in fixed) == (
         spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
         else theta_range * (params.angles - 1) / params.angles)
-    result, _ = solve_and_validate(GAP_WALL, vehicle, 2)
+    result, _ = solve_and_validate(GAP_WALL, vehicle, 2, rgrrt.RGRRTParams(goal_controls=0))
     assert {tuple(row[4:]) for row in result.tree} <= fixed
     # The goal bias and the random targets together use more than one control.
     assert len({tuple(row[4:]) for row in result.tree}) > 2
 
+
+def test_random_goal_controls_only_where_the_goal_is_within_a_step():
+    params = rgrrt.RGRRTParams()
+    fixed = set(rgrrt.reachable_controls(params, spaceship.THETA_RANGE))
+    problem = parse_problem(ZIGZAG)
+    gx, gy = problem.goal
+    random_edges = 0
+    for seed in range(5):
+        result, _ = solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, seed, params)
+        for x, y, dx, dy, theta, thrust in result.tree:
+            if (theta, thrust) not in fixed:
+                random_edges += 1
+                assert math.hypot(x - gx, y - gy) <= math.hypot(dx, dy) + spaceship.MAX_THRUST
+    assert random_edges > 0  # some runs land on the goal with one of them
 
 def test_no_node_is_added_twice():
     result, _ = solve_and_validate(ZIGZAG, Vehicle.SPACESHIP, 4)
