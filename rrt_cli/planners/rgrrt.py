@@ -40,6 +40,10 @@ goal points into walls, and a target pulls only the node nearest it in a
 straight line; judged by its own position, the fastest state down a corridor
 would win, and it cannot take the next corner.
 
+A second departure (``goal_controls``): a node the goal is within one step's
+reach of also gets a few random controls in its reachable set, as the fixed
+full-thrust steps tend to jump over the small goal disc.
+
 Reachable positions live in a :class:`~rrt_cli.nearest.QuadtreeNearest`; each
 point's index maps to its node and control.
 """
