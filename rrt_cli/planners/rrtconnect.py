@@ -2,8 +2,8 @@
 single-query path planning", ICRA) for the point vehicle.
 
 Two trees grow, one from the start and one from the goal, and swap roles every
-iteration. The active tree *extends* one step toward a uniform random target;
-when that adds a node, the other tree *connects* toward the new node: it
+iteration. The active tree *extends* one step toward a random target; when
+that adds a node, the other tree *connects* toward the new node: it
 extends toward it again and again while each step advances (neither reaching
 it nor being trapped). When the connect reaches the node exactly, the trees
 meet and the path is start tree -> meeting point -> goal tree.
@@ -14,6 +14,11 @@ that distance, and with ``partial_extension`` a blocked step goes as far as it
 is free. The goal tree's segments are checked in the direction the path will
 travel them (toward the goal). The goal tree's root is the goal point itself,
 so the path ends exactly at the goal.
+
+The paper draws targets uniformly; here, by default, 90% come from the trees'
+frontier (free cells without a node beside cells with one,
+:mod:`rrt_cli.planners.frontier`), which in a maze is what keeps the trees
+advancing: see ``RRTConnectParams.frontier_targets`` (0 restores the paper).
 
 The tree section of the output lists both trees' edges, goal-tree edges
 pointing toward the goal.
