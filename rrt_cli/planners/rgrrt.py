@@ -74,8 +74,8 @@ class RGRRTParams:
     """With ``goal_distance="cells"``: share of the iterations that take the
     best-first step (see ``goal_distance``) instead of drawing a target. It was
     ``goal_bias`` (0.05) until 2026-11-23; with ``guide_by_stopping_point`` 0.2
-    was 2-5 times faster on 100x100 maps (8 seeds each of maze, narrow, open
-    and random; 30 s), and no problem measured got slower."""
+    was 1.8-5 times faster (median, 8 seeds, both ships) on maze-100,
+    narrow-50, narrow-100, open-100 and random-d20-100, and none got slower."""
     guide_by_stopping_point: bool = True
     """The best-first step ranks a reachable state by the free-cell distance to
     the goal of the point where the ship would come to rest under full braking
@@ -83,9 +83,10 @@ class RGRRTParams:
     line meets a blocked cell comes after every other. False: by the distance of
     its own position. Ranked by position, the step favours the fastest states
     down a corridor, which then cannot take the next corner, and a maze's
-    corners become plateaus of thousands of such states: 8 seeds, 30 s, maze-100
-    went from 7/8 (``-grad``, median 8.3 s) and 2/4 (left-only) solved to 8/8 in
-    0.6 s and 0.9 s."""
+    corners become plateaus of thousands of such states. maze-100, 30 s,
+    ``guided_share`` 0.2: ``-grad`` 2 of 4 seeds solved by position, 8 of 8 by
+    the braking point (median 0.6 s); left-only a median 3.2 s (4 seeds)
+    against 0.9 s (8 seeds)."""
     goal_tolerance: float = 0.1
     """A node within this distance of the goal solves the problem."""
     angles: int = 8
@@ -93,7 +94,7 @@ class RGRRTParams:
     (straight ahead): over [0, 2 pi) for the plain ship, over [0, pi] with both
     ends for the left-only ship, so that full braking (theta = pi, which SPEC 3
     allows) is in its set. Until 2026-11-23 the left-only set stopped at 7/8 pi,
-    and could brake only while turning left: 8 seeds, 30 s, maze-100 2/4 solved
+    and could brake only while turning left: 4 seeds, 30 s, maze-100 2/4 solved
     against 4/4, narrow-100 a median 11.6 s against 3.3 s."""
     thrusts: tuple[float, ...] = (0.5,)
     """Thrust magnitudes used at every angle; zero thrust (coasting) is always in
