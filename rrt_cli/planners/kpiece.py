@@ -85,7 +85,8 @@ class KPIECEParams:
     take a maze's corners there are pruned as uninteresting; seeds 1-3, 30 s:
     the left-only ship solved maze-100 in a median 3.2 s with 0.2 against 0/3
     with None (maze-50 seed 1: 2.3 s against 106 s), ``-grad`` maze-100 1.4 s
-    against 8.9 s; elsewhere within noise of None (0.1 did about as well)."""
+    against 8.9 s; elsewhere as fast or faster but for ``-grad`` open-100
+    (0.08 s against 0.05 s). 0.1 did about as well."""
     goal_bias: float = 0.05
     """Probability of expanding the motion closest to the goal instead of a
     cell's motion (OMPL's default, 0.05)."""
