@@ -297,17 +297,16 @@ def planner_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
 
 def path_length_ratios(ours: Sequence[RunRow], reference: Sequence[RunRow]) -> dict[str, float]:
     """Per problem solved by both: median path length of ``ours`` over ``reference``'s."""
-    lengths: dict[tuple[str, bool], list[float]] = {}
-    for key, runs in (("ours", ours), ("reference", reference)):
-        for r in runs:
-            if r.solved and r.path_length is not None:
-                lengths.setdefault((r.problem, key == "ours"), []).append(r.path_length)
-    ratios = {}
-    for (problem, is_ours), mine in lengths.items():
-        theirs = lengths.get((problem, False))
-        if is_ours and theirs and statistics.median(theirs) > 0:
-            ratios[problem] = statistics.median(mine) / statistics.median(theirs)
-    return ratios
+    mine, theirs = _median_path_lengths(ours), _median_path_lengths(reference)
+    return {problem: length / theirs[problem] for problem, length in mine.items()
+            if theirs.get(problem, 0.0) > 0.0}
+
+
+def _median_path_lengths(runs: Sequence[RunRow]) -> dict[str, float]:
+    """Per problem: the median path length of the solved runs."""
+    lengths = group([r for r in runs if r.solved and r.path_length is not None], "problem")
+    return {problem: statistics.median(r.path_length for r in solved)
+            for (problem,), solved in lengths.items()}
 
 
 def targets_table(rows: Sequence[RunRow]) -> list[str]:

@@ -5,16 +5,17 @@ for systems with complex dynamics", IEEE Trans. Robotics 28(1), 2012).
 
 KPIECE1 grows one tree of motions without a nearest-neighbour search and
 without random targets. It lays a grid over a projection of the state (here the
-position and the velocity by default, or the position alone) and keeps, per grid cell, the motions
-that end in it. Each iteration:
+position and the velocity by default, or the position alone) and keeps, per
+grid cell, the motions that end in it. Each iteration:
 
 1. picks a cell: an exterior cell (fewer than ``2 * dims`` axis neighbours in
    the grid) with probability ``max(border_fraction, share of exterior cells)``,
    else an interior one; within the chosen group, the cell of highest
    importance ``score / ((neighbours + 1) * coverage * selections)``, where
    ``score`` starts at ``(1 + log(iteration of creation)) / (0.001 + distance to
-   goal)`` (measured along the free cells by default, see below) and shrinks by ``good_score_factor`` after each successful expansion
-   from the cell and by ``bad_score_factor`` after each failed one;
+   goal)`` (measured along the free cells by default, see below) and shrinks
+   by ``good_score_factor`` after each successful expansion from the cell and
+   by ``bad_score_factor`` after each failed one;
 2. picks a motion of that cell, by a half-normal distribution favouring the
    newest ones (with probability ``goal_bias``, instead, the motion closest to
    the goal among the ``close_samples`` closest, whose recorded distance is then

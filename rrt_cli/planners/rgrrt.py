@@ -324,7 +324,8 @@ def stopping_point_key(cell_distance: CellDistanceToGoal, world: GridWorld):
         ahead = math.hypot(dx, dy) * reach
         sx, sy = x + dx * ahead, y + dy * ahead
         distance = cell_distance(sx, sy)
-        if distance >= unreachable or world.first_blocked_cell_on_segment(x, y, sx, sy) is not None:
+        if (distance >= unreachable
+                or world.first_blocked_cell_on_segment(x, y, sx, sy) is not None):
             return cell_distance(x, y) + _BLOCKED_BRAKING_PENALTY
         return distance
 

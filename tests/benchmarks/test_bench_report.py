@@ -128,6 +128,7 @@ def test_planner_targets_compare_with_our_own_rrt():
     assert narrow.met is False
     assert not any(target.startswith("left:") for target in targets)  # no left-only rows
     star = next(check for target, check in targets.items() if target.startswith("point: prmstar"))
-    assert star.met is True and "mean ratio 0.77×" in star.detail and "on 1/2 problems" in star.detail
+    assert star.met is True
+    assert "mean ratio 0.77×" in star.detail and "on 1/2 problems" in star.detail
     connect = targets["point: rrtconnect median planning time on maze problems below our rrt's"]
     assert connect.met is False and connect.detail == "ratio 1.20×"
