@@ -32,6 +32,7 @@ from benchmarks.harness import HarnessOptions, ProgressBar, RunSpec, run_all
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import read_csv, write_csv
+from benchmarks.shortest_path import shortest_lengths
 from planning_core.cli_args import OneLineErrorParser
 from planning_core.vehicles import Vehicle
 
@@ -131,8 +132,12 @@ def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
 def write_reports(rows, out: Path, meta: dict, plots: bool) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
+    # The yardstick for the point vehicle's path lengths: a few seconds at 100x100.
+    shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
+    (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
+        f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"
-    report.write_text(markdown_report(rows, meta) + "\n")
+    report.write_text(markdown_report(rows, meta, shortest=shortest) + "\n")
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     header = LogHeader(hostname=meta.get("host", "unknown"), date=meta.get("date", ""),
                        cpu_info=meta.get("cpu", ""),

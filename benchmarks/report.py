@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import statistics
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Iterable, Mapping, Sequence
 
 from benchmarks.catalog import label, reference_planner
 from benchmarks.rows import RunRow
@@ -199,8 +199,12 @@ def _success_within(rows: Sequence[RunRow], seconds: float) -> tuple[int, int]:
     return ok, len(rows)
 
 
-def check_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
-    """The issue's targets, judged on this run's medians (ours = every planner of ours)."""
+def check_targets(rows: Sequence[RunRow],
+                  shortest: Mapping[str, float] | None = None) -> list[TargetCheck]:
+    """The issue's targets, judged on this run's medians (ours = every planner of ours).
+
+    ``shortest``: the point vehicle's shortest path length per problem, when known.
+    """
     checks: list[TargetCheck] = []
     ours = sorted({r.planner for r in rows if r.implementation == "ours"})
 
@@ -251,7 +255,7 @@ def check_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
     speed_target("spaceship", 1, 0.5)
     for vehicle in ("point", "spaceship"):
         speed_target(vehicle, 1, 1.0, process=True, family="course")
-    checks.extend(planner_targets(rows))
+    checks.extend(planner_targets(rows, shortest))
     return checks
 
 
@@ -261,11 +265,15 @@ def _ours(rows: Sequence[RunRow], vehicle: str, planner: str,
             and r.implementation == "ours" and (family is None or r.family == family)]
 
 
-def planner_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
+def planner_targets(rows: Sequence[RunRow],
+                    shortest: Mapping[str, float] | None = None) -> list[TargetCheck]:
     """Issue 5's targets, each against our own RRT in the same run: on the
     spaceships, KPIECE1 or RG-RRT at least 2x faster (median planning time) on
     the mazes and on the narrow passages; on the point vehicle, PRM* paths at
-    least 20% shorter and RRT-Connect faster on the mazes."""
+    least 20% shorter and RRT-Connect faster on the mazes.
+
+    With ``shortest`` (per problem), the PRM* line also says what the shortest
+    paths themselves would score against RRT's: no planner can do better."""
     checks: list[TargetCheck] = []
     for vehicle in ("spaceship", "left"):
         for family in ("maze", "narrow"):
@@ -279,14 +287,21 @@ def planner_targets(rows: Sequence[RunRow]) -> list[TargetCheck]:
                 f"{vehicle}: kpiece or rgrrt median planning time on {family} problems at most "
                 f"0.5× our rrt's", min(ratios.values()) <= 0.5,
                 ", ".join(f"{planner} {_ratio(ratio)}" for planner, ratio in ratios.items())))
-    shorter = path_length_ratios(_ours(rows, "point", "prmstar"), _ours(rows, "point", "rrt"))
+    rrt_runs = _ours(rows, "point", "rrt")
+    shorter = path_length_ratios(_ours(rows, "point", "prmstar"), rrt_runs)
     if shorter:
         mean_ratio = statistics.fmean(shorter.values())
         at_least = sum(1 for ratio in shorter.values() if ratio <= 0.8)
+        detail = (f"mean ratio {_ratio(mean_ratio)}; 20% shorter on {at_least}/{len(shorter)} "
+                  "problems")
+        rrt_lengths = _median_path_lengths(rrt_runs)
+        if shortest and all(problem in shortest for problem in shorter):
+            best = [shortest[problem] / rrt_lengths[problem] for problem in shorter]
+            detail += (f"; the shortest paths would score {_ratio(statistics.fmean(best))}, "
+                       f"20% shorter on {sum(1 for ratio in best if ratio <= 0.8)}/{len(best)}")
         checks.append(TargetCheck(
             "point: prmstar paths at least 20% shorter than our rrt's (mean over problems of "
-            "the median-length ratio)", mean_ratio <= 0.8,
-            f"mean ratio {_ratio(mean_ratio)}; 20% shorter on {at_least}/{len(shorter)} problems"))
+            "the median-length ratio)", mean_ratio <= 0.8, detail))
     baseline = _ours(rows, "point", "rrt", "maze")
     ratio = median_ratio(_ours(rows, "point", "rrtconnect", "maze"), baseline)
     if baseline and math.isfinite(ratio):
@@ -309,17 +324,40 @@ def _median_path_lengths(runs: Sequence[RunRow]) -> dict[str, float]:
             for (problem,), solved in lengths.items()}
 
 
-def targets_table(rows: Sequence[RunRow]) -> list[str]:
+def targets_table(rows: Sequence[RunRow],
+                  shortest: Mapping[str, float] | None = None) -> list[str]:
     lines = ["| Target | Met | Measured |", "|---|:---:|---|"]
-    for check in check_targets(rows):
+    for check in check_targets(rows, shortest):
         mark = {True: "yes", False: "**no**", None: "n/a"}[check.met]
         lines.append(f"| {check.target} | {mark} | {check.detail} |")
     return lines
 
 
-def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
-                    per_problem: bool = True) -> str:
-    """The whole report: header, targets, a summary table per vehicle, per-problem tables."""
+def path_quality_table(rows: Sequence[RunRow], shortest: Mapping[str, float]) -> list[str]:
+    """The point vehicle's path lengths over the shortest possible, per problem:
+    one column per planner (its median over solved runs), and the mean row."""
+    point = [r for r in rows if r.vehicle == "point" and r.problem in shortest]
+    names = planner_order(r.planner for r in point)
+    medians = {name: _median_path_lengths([r for r in point if r.planner == name])
+               for name in names}
+    lines = ["| Problem | Shortest | " + " | ".join(label(name, "point") for name in names) + " |",
+             "|---|---:|" + "---:|" * len(names)]
+    for problem in problem_order(point):
+        cells = [_fmt(medians[name][problem] / shortest[problem], 4)
+                 if problem in medians[name] else "–" for name in names]
+        lines.append(f"| {problem} | {_fmt(shortest[problem], 4)} | " + " | ".join(cells) + " |")
+    means = [_fmt(statistics.fmean(length / shortest[problem]
+                                   for problem, length in medians[name].items()), 4)
+             if medians[name] else "–" for name in names]
+    lines.append("| mean over problems | | " + " | ".join(means) + " |")
+    return lines
+
+
+def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: bool = True,
+                    shortest: Mapping[str, float] | None = None) -> str:
+    """The whole report: header, targets, a summary table per vehicle, the point
+    vehicle's path quality (with ``shortest``, the shortest path length per
+    problem), per-problem tables."""
     out = [f"# Benchmark report: {meta.get('preset', 'custom')} run, {meta.get('date', '')}",
            ""]
     for key, value in meta.items():
@@ -332,7 +370,7 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
             "problems and seeds (below 1 is faster); \"process\" = wall time of the whole "
             "planner process. A solution the validator rejects counts as unsolved.", ""]
     vehicles = [v for v in VEHICLE_ORDER if any(r.vehicle == v for r in rows)]
-    out += ["## Targets", ""] + targets_table(rows) + [""]
+    out += ["## Targets", ""] + targets_table(rows, shortest) + [""]
     for vehicle in vehicles:
         problems = {r.problem for r in rows if r.vehicle == vehicle}
         seeds = {r.seed for r in rows if r.vehicle == vehicle}
@@ -341,6 +379,10 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
                 f"{len(problems)} problems x {len(seeds)} seeds, time limit "
                 f"{', '.join(f'{t:g}' for t in limits)} s.", ""]
         out += summary_table(rows, vehicle) + [""]
+        if vehicle == "point" and shortest:
+            out += ["Median path length over the shortest path (benchmarks/shortest_path.py: "
+                    "exact, through the corners of the blocked cells), per problem; 1 is "
+                    "optimal.", ""] + path_quality_table(rows, shortest) + [""]
     failures = [r for r in rows if r.status in ("invalid", "crashed", "killed", "bad_input")]
     if failures:
         out += ["## Runs that failed for other reasons than a limit", "",

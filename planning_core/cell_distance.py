@@ -81,3 +81,25 @@ class CellDistanceToGoal:
         # Progress inside the cell toward the next one, from the cell's centre.
         return d - ((x - int(x) - 0.5) * self._toward_x[index]
                     + (y - int(y) - 0.5) * self._toward_y[index])
+
+    def chain_from(self, x: float, y: float) -> list[tuple[int, int]] | None:
+        """The cells (column, row) of the cheapest chain from (x, y)'s cell to the goal's.
+
+        Consecutive cells share a side, or a corner with both side cells free, so
+        the polyline through their centres stays in free cells. None when (x, y)
+        has no chain (blocked, outside, or cut off from the goal).
+        """
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return None
+        index = int(y) * self.width + int(x)
+        if self.cell_distance[index] == math.inf:
+            return None
+        chain = []
+        while True:
+            row, col = divmod(index, self.width)
+            chain.append((col, row))
+            if index == self.goal_cell:
+                return chain
+            toward_x, toward_y = self._toward_x[index], self._toward_y[index]
+            index = ((row + (toward_y > 0) - (toward_y < 0)) * self.width
+                     + col + (toward_x > 0) - (toward_x < 0))

@@ -79,3 +79,24 @@ def test_every_free_cell_joined_to_the_goal_gets_a_finite_distance():
                 assert math.isfinite(value)
                 # Never shorter than the straight line between the centres.
                 assert value >= math.hypot(8 - column, 6 - row) - 1e-9
+
+
+def test_chain_runs_through_free_neighbours_to_the_goal_cell():
+    distance = CellDistanceToGoal(WALLED)
+    chain = distance.chain_from(4.5, 0.5)
+    assert chain[0] == (4, 0) and chain[-1] == (4, 4)
+    for (c0, r0), (c1, r1) in zip(chain, chain[1:]):
+        assert max(abs(c1 - c0), abs(r1 - r0)) == 1
+        assert not WALLED.is_blocked_cell(c1, r1)
+        # A diagonal step has both cells beside it free: no blocked corner is cut.
+        assert not (WALLED.is_blocked_cell(c1, r0) or WALLED.is_blocked_cell(c0, r1))
+    assert (0, 2) in chain  # the wall's only gap
+    # The chain's steps add up to the cell distance between the centres.
+    steps = sum(math.dist(a, b) for a, b in zip(chain, chain[1:]))
+    assert math.isclose(steps, distance.cell_distance[4], abs_tol=1e-12)
+
+
+def test_no_chain_from_a_blocked_cell_or_outside():
+    distance = CellDistanceToGoal(WALLED)
+    assert distance.chain_from(2.5, 2.5) is None
+    assert distance.chain_from(-1.0, 0.5) is None

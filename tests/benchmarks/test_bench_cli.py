@@ -33,6 +33,10 @@ def test_tiny_run_writes_every_report(tmp_path):
     text = (out / "report.md").read_text()
     assert "| Planner | Success % | Time (s) | Path length | Tree nodes |" in text
     assert "## Targets" in text
+    # The point vehicle's paths against the shortest ones, kept as a CSV too.
+    shortest = (out / "shortest.csv").read_text().splitlines()
+    assert shortest[0] == "problem,shortest_path_length" and len(shortest) == 1 + 3
+    assert "| Problem | Shortest | rrt (ours) |" in text
     logs = sorted(p.name for p in (out / "ompl-logs").iterdir())
     assert "course-space-1_spaceship.log" in logs and len(logs) == 6
     # The reports can be rebuilt from the CSV alone.

@@ -132,3 +132,37 @@ def test_planner_targets_compare_with_our_own_rrt():
     assert "mean ratio 0.77×" in star.detail and "on 1/2 problems" in star.detail
     connect = targets["point: rrtconnect median planning time on maze problems below our rrt's"]
     assert connect.met is False and connect.detail == "ratio 1.20×"
+
+
+def test_path_quality_table_divides_median_lengths_by_the_shortest():
+    rows = []
+    for seed, (rrt_length, star_length) in enumerate(((12.0, 10.5), (15.0, 11.0), (13.0, 10.0))):
+        rows.append(row("rrt", "maze-20", seed, 0.5, length=rrt_length))
+        rows.append(row("prmstar", "maze-20", seed, 0.5, length=star_length))
+    rows.append(row("rrt", "open-20", 0, 0.1, length=21.0, family="open"))
+    rows.append(row("prmstar", "open-20", 0, 0.1, solved=False, family="open"))
+    rows.append(row("rrt", "maze-20", 0, 0.5, vehicle="spaceship", length=1.0))  # not point
+    table = parse_table(report.path_quality_table(rows, {"maze-20": 10.0, "open-20": 20.0}))
+    assert table[0] == ["Problem", "Shortest", "prmstar (ours)", "rrt (ours)"]
+    body = {line[0]: line[1:] for line in table[2:]}
+    assert body["maze-20"] == ["10", "1.05", "1.3"]  # medians 10.5 and 13 over 10
+    assert body["open-20"] == ["20", "–", "1.05"]    # prmstar solved nothing there
+    assert body["mean over problems"] == ["", "1.05", f"{(1.3 + 1.05) / 2:.4g}"]
+
+
+def test_prmstar_target_says_what_the_shortest_paths_would_score():
+    rows = []
+    for problem, rrt_length, star_length, shortest in (("maze-20", 10.0, 7.0, 6.0),
+                                                        ("open-20", 10.0, 9.8, 9.7)):
+        rows.append(row("rrt", problem, 1, 0.5, length=rrt_length))
+        rows.append(row("prmstar", problem, 1, 0.9, length=star_length))
+    shortest = {"maze-20": 6.0, "open-20": 9.7}
+    star = next(c for c in report.planner_targets(rows, shortest)
+                if c.target.startswith("point: prmstar"))
+    assert star.met is False  # mean of 0.7 and 0.98
+    assert star.detail.endswith("the shortest paths would score 0.78×, 20% shorter on 1/2")
+    # Without the lengths (or with one missing) the detail stops at the run's own ratio.
+    for partial in (None, {"maze-20": 6.0}):
+        star = next(c for c in report.planner_targets(rows, partial)
+                    if c.target.startswith("point: prmstar"))
+        assert "shortest" not in star.detail
