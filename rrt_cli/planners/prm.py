@@ -118,19 +118,32 @@ class Roadmap:
         return tuple((xs[a], ys[a], xs[b], ys[b]) for a, b in self.edges)
 
 
+@dataclass(frozen=True)
+class Refinement:
+    """How a roadmap keeps growing after its first answer (PRM: not at all)."""
+
+    growth: float = 1.0
+    """Between two queries the roadmap grows by this factor (1.0: answer at once)."""
+    min_improvement: float = 1.0
+    """Grow again while the last growth shortened the path by at least this
+    fraction of its length (1.0: never, one growth only)."""
+    max_vertices: int = 0
+    """Grow again only while the grown roadmap stays within this many vertices
+    (the first growth after the first answer happens anyway)."""
+
+
 def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
                       rng: random.Random, neighbor_count: Callable[[int], int],
-                      min_vertices: int, growth_after_connection: float,
+                      min_vertices: int, refinement: Refinement,
                       goal_tolerance: float, name: str) -> PlanResult:
     """Grow a roadmap until it answers the start-goal query or ``stop`` ends it.
 
     ``neighbor_count(n)``: how many nearest vertices a new vertex tries to join
     when the roadmap will have ``n`` vertices with it. The first query runs once
-    start and goal are connected and the roadmap has ``min_vertices``; after it
-    succeeds with ``n`` vertices, the roadmap keeps growing to
-    ``growth_after_connection * n`` vertices and is queried again (the answer
-    can only get shorter). If ``stop`` fires in between, the best answer so far
-    is returned.
+    start and goal are connected and the roadmap has ``min_vertices``. After it
+    succeeds with ``n`` vertices, the roadmap grows as ``refinement`` says and is
+    queried again after each growth (the answer can only get shorter). If
+    ``stop`` fires in between, the best answer so far is returned.
     """
     if vehicle is not Vehicle.POINT:
         raise ValueError(f"{name} plans for the point vehicle only")
@@ -146,6 +159,10 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
         return PlanResult(status, trajectory, roadmap.edge_rows(), PlanStats(
             iterations, len(roadmap), time.perf_counter() - began), message)
 
+    def length(path: list[int]) -> float:
+        xs, ys = roadmap.xs, roadmap.ys
+        return sum(math.hypot(xs[a] - xs[b], ys[a] - ys[b]) for a, b in zip(path, path[1:]))
+
     (sx, sy), (gx, gy) = problem.start, problem.goal
     if math.hypot(sx - gx, sy - gy) <= goal_tolerance * (1 - 1e-9):
         return result(PlanStatus.SOLVED, [START], 0)
@@ -157,15 +174,22 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
     width = problem.width
     iterations = 0
     solution: list[int] | None = None
-    final_size = 0
+    next_query = 0
     while True:
         if solution is None:
             if len(roadmap) >= min_vertices and roadmap.component(START) == roadmap.component(GOAL):
                 solution = _query(roadmap, world)
                 if solution is not None:
-                    final_size = math.ceil(len(roadmap) * growth_after_connection)
-        if solution is not None and len(roadmap) >= final_size:
-            return result(PlanStatus.SOLVED, _query(roadmap, world) or solution, iterations)
+                    if refinement.growth <= 1.0:
+                        return result(PlanStatus.SOLVED, solution, iterations)
+                    next_query = math.ceil(len(roadmap) * refinement.growth)
+        elif len(roadmap) >= next_query:
+            shorter = _query(roadmap, world) or solution
+            gain = 1.0 - length(shorter) / length(solution)
+            solution = shorter
+            next_query = math.ceil(len(roadmap) * refinement.growth)
+            if gain < refinement.min_improvement or next_query > refinement.max_vertices:
+                return result(PlanStatus.SOLVED, solution, iterations)
         limit = stop.status(iterations)
         if limit is not None:
             if solution is not None:
@@ -194,4 +218,4 @@ def _query(roadmap: Roadmap, world: GridWorld) -> list[int] | None:
 def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
           params: PRMParams = PRMParams()) -> PlanResult:
     return plan_with_roadmap(problem, vehicle, stop, rng, lambda n: params.neighbors,
-                             params.min_vertices, 1.0, params.goal_tolerance, "prm")
+                             params.min_vertices, Refinement(), params.goal_tolerance, "prm")

@@ -96,6 +96,39 @@ def test_prmstar_paths_are_at_least_20_percent_shorter_than_rrt():
     assert statistics.median(star) <= 0.8 * statistics.median(tree)
 
 
+ONE_GROWTH = prmstar.PRMStarParams(min_improvement=1.0)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_prmstar_refinement_only_ever_shortens_the_path(seed):
+    # Same seed, same roadmap up to the first growth; refinement grows it further
+    # while a growth gains 3%, so the answer is no longer and its roadmap no smaller.
+    problem = random_field(15, 0.3, random.Random(3))
+    once = prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed),
+                         ONE_GROWTH)
+    refined = prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed))
+    assert_valid_roadmap_answer(problem, refined)
+    assert path_length(refined.trajectory) <= path_length(once.trajectory)
+    assert refined.stats.tree_nodes >= once.stats.tree_nodes
+    assert refined.tree[:len(once.tree)] == once.tree
+    # The vertex cap ends refinement after the first growth, as min_improvement=1 does.
+    capped = prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed),
+                           prmstar.PRMStarParams(max_refined_vertices=0))
+    assert (capped.trajectory, capped.tree) == (once.trajectory, once.tree)
+
+
+def test_prmstar_refines_where_it_pays():
+    # An open map: the first answer is the straight line, the first growth gains
+    # nothing, so it stops there. The course's walled maze: it grows past that.
+    open_map = Problem(20, 20, bytes(400), (0.5, 0.5), (19.5, 19.5))
+    course = parse_problem(next(p for p in COURSE_PROBLEMS if p.stem == "space-2").read_text())
+    for problem, grows in ((open_map, False), (course, True)):
+        grown = [prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed),
+                               params).stats.tree_nodes
+                 for seed in range(4) for params in (ONE_GROWTH, prmstar.PRMStarParams())]
+        assert any(refined > once for once, refined in zip(grown[::2], grown[1::2])) == grows
+
+
 def test_prmstar_k_follows_the_formula():
     # k = ceil(e (1 + 1/d) log n), d = 2: 4.077 * log n.
     assert prmstar.star_neighbor_count(1) == 1
