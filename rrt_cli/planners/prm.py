@@ -130,6 +130,9 @@ class Refinement:
     max_vertices: int = 0
     """Grow again only while the grown roadmap stays within this many vertices
     (the first growth after the first answer happens anyway)."""
+    min_vertices: int = 0
+    """Below this many vertices, grow again even without improvement: a small
+    roadmap's path moves in jumps, and one growth that gains nothing says little."""
 
 
 def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
@@ -180,7 +183,8 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
             if len(roadmap) >= min_vertices and roadmap.component(START) == roadmap.component(GOAL):
                 solution = _query(roadmap, world)
                 if solution is not None:
-                    if refinement.growth <= 1.0:
+                    # A single edge is the straight line: nothing can be shorter.
+                    if refinement.growth <= 1.0 or len(solution) == 2:
                         return result(PlanStatus.SOLVED, solution, iterations)
                     next_query = math.ceil(len(roadmap) * refinement.growth)
         elif len(roadmap) >= next_query:
@@ -188,7 +192,8 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
             gain = 1.0 - length(shorter) / length(solution)
             solution = shorter
             next_query = math.ceil(len(roadmap) * refinement.growth)
-            if gain < refinement.min_improvement or next_query > refinement.max_vertices:
+            if (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
+                    or next_query > refinement.max_vertices):
                 return result(PlanStatus.SOLVED, solution, iterations)
         limit = stop.status(iterations)
         if limit is not None:

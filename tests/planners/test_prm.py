@@ -96,7 +96,7 @@ def test_prmstar_paths_are_at_least_20_percent_shorter_than_rrt():
     assert statistics.median(star) <= 0.8 * statistics.median(tree)
 
 
-ONE_GROWTH = prmstar.PRMStarParams(min_improvement=1.0)
+ONE_GROWTH = prmstar.PRMStarParams(min_improvement=1.0, min_refined_vertices=0)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -118,8 +118,8 @@ def test_prmstar_refinement_only_ever_shortens_the_path(seed):
 
 
 def test_prmstar_refines_where_it_pays():
-    # An open map: the first answer is the straight line, the first growth gains
-    # nothing, so it stops there. The course's walled maze: it grows past that.
+    # An open map: the first answer is the straight line, so it stops there. The
+    # course's walled maze: it grows past the first growth.
     open_map = Problem(20, 20, bytes(400), (0.5, 0.5), (19.5, 19.5))
     course = parse_problem(next(p for p in COURSE_PROBLEMS if p.stem == "space-2").read_text())
     for problem, grows in ((open_map, False), (course, True)):
@@ -127,6 +127,9 @@ def test_prmstar_refines_where_it_pays():
                                params).stats.tree_nodes
                  for seed in range(4) for params in (ONE_GROWTH, prmstar.PRMStarParams())]
         assert any(refined > once for once, refined in zip(grown[::2], grown[1::2])) == grows
+    straight = prmstar.solve(open_map, Vehicle.POINT, StopCondition(30), random.Random(0))
+    assert straight.trajectory == (open_map.start, open_map.goal)
+    assert straight.stats.tree_nodes == 2
 
 
 def test_prmstar_k_follows_the_formula():
