@@ -109,7 +109,8 @@ class _OpenObstacles:
                 cross_y = (line_y - ay) / dy
 
 
-def _corner_vertices(obstacles: _OpenObstacles) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
+def _corner_vertices(obstacles: _OpenObstacles) -> tuple[list[tuple[int, int]],
+                                                         list[tuple[int, int]]]:
     """Grid points a shortest path can bend at, with the sign of their blocked quadrant.
 
     One blocked cell of four: a convex corner; the quadrant's signs (sx, sy) say
