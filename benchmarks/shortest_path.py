@@ -164,10 +164,10 @@ def shortest_path(problem: Problem) -> ShortestPath | None:
     point_list = [(float(x), float(y)) for x, y in points]  # plain floats for the exact test
     xs = np.array([p[0] for p in points], dtype=float)
     ys = np.array([p[1] for p in points], dtype=float)
-    # Start and goal are no bends: (0, 0) switches the tangent test off for them.
+    # Start and goal are no bends: quadrant (0, 0), like a pinch's, makes the
+    # tangent test's product 0, which passes.
     sxs = np.array([0, 0, *(q[0] for q in quadrants)], dtype=float)
     sys_ = np.array([0, 0, *(q[1] for q in quadrants)], dtype=float)
-    unpruned = sxs == 0
     to_goal = np.hypot(xs - problem.goal[0], ys - problem.goal[1])
     cost = np.full(len(points), math.inf)
     cost[0] = 0.0
@@ -185,10 +185,8 @@ def shortest_path(problem: Problem) -> ShortestPath | None:
         dx, dy = xs - xs[vertex], ys - ys[vertex]
         through = cost[vertex] + np.hypot(dx, dy)
         wanted = (~closed) & (through < cost) & (through + to_goal <= min(bound, cost[1]))
-        # Tangent at the far end; at this end too when this vertex is a corner.
-        wanted &= unpruned | (dx * sxs * dy * sys_ <= 0)
-        if not unpruned[vertex]:
-            wanted &= dx * sxs[vertex] * dy * sys_[vertex] <= 0
+        # Tangent at the far end and at this one.
+        wanted &= (dx * sxs * dy * sys_ <= 0) & (dx * sxs[vertex] * dy * sys_[vertex] <= 0)
         x0, y0 = point_list[vertex]
         for other in np.flatnonzero(wanted).tolist():
             tested += 1

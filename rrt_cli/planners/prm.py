@@ -34,7 +34,7 @@ from rrt_cli.graph_search import astar
 from rrt_cli.nearest import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
 from rrt_cli.planners.point_common import (
-    first_blocked_segment, free_cell_indices, goal_vertex, sample_free_point)
+    first_blocked_segment, free_cell_indices, goal_vertex, path_length, sample_free_point)
 from rrt_cli.planners.rrt import goal_certainly_unreachable
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
@@ -113,6 +113,9 @@ class Roadmap:
     def shortest_path(self, source: int, target: int) -> list[int] | None:
         return astar(self.adjacency, self.xs, self.ys, source, target)
 
+    def points(self, path: list[int]) -> list[tuple[float, float]]:
+        return [(self.xs[v], self.ys[v]) for v in path]
+
     def edge_rows(self) -> tuple[tuple[float, float, float, float], ...]:
         xs, ys = self.xs, self.ys
         return tuple((xs[a], ys[a], xs[b], ys[b]) for a, b in self.edges)
@@ -157,14 +160,9 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
     roadmap.add_vertex(*goal_vertex(world, problem.goal), neighbors=1)
 
     def result(status: PlanStatus, path: list[int] | None, iterations: int, message=""):
-        trajectory = () if path is None else tuple(
-            (roadmap.xs[v], roadmap.ys[v]) for v in path)
+        trajectory = () if path is None else tuple(roadmap.points(path))
         return PlanResult(status, trajectory, roadmap.edge_rows(), PlanStats(
             iterations, len(roadmap), time.perf_counter() - began), message)
-
-    def length(path: list[int]) -> float:
-        xs, ys = roadmap.xs, roadmap.ys
-        return sum(math.hypot(xs[a] - xs[b], ys[a] - ys[b]) for a, b in zip(path, path[1:]))
 
     (sx, sy), (gx, gy) = problem.start, problem.goal
     if math.hypot(sx - gx, sy - gy) <= goal_tolerance * (1 - 1e-9):
@@ -189,7 +187,8 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
                     next_query = math.ceil(len(roadmap) * refinement.growth)
         elif len(roadmap) >= next_query:
             shorter = _query(roadmap, world) or solution
-            gain = 1.0 - length(shorter) / length(solution)
+            gain = 1.0 - (path_length(roadmap.points(shorter))
+                          / path_length(roadmap.points(solution)))
             solution = shorter
             next_query = math.ceil(len(roadmap) * refinement.growth)
             if (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
@@ -213,7 +212,7 @@ def _query(roadmap: Roadmap, world: GridWorld) -> list[int] | None:
         path = roadmap.shortest_path(START, GOAL)
         if path is None:
             return None
-        points = [(roadmap.xs[v], roadmap.ys[v]) for v in path]
+        points = roadmap.points(path)
         bad = first_blocked_segment(world, points)
         if bad is None:
             return path
