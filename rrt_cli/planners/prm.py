@@ -131,8 +131,9 @@ class Refinement:
     """Grow again while the last growth shortened the path by at least this
     fraction of its length (1.0: never, one growth only)."""
     max_vertices: int = 0
-    """Grow again only while the grown roadmap stays within this many vertices
-    (the first growth after the first answer happens anyway)."""
+    """Grow only while the grown roadmap stays within this many vertices; this
+    binds the first growth too, so a first answer on a big roadmap is final
+    (growing it would double the time already spent)."""
     min_vertices: int = 0
     """Below this many vertices, grow again even without improvement: a small
     roadmap's path moves in jumps, and one growth that gains nothing says little."""
@@ -181,10 +182,11 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
             if len(roadmap) >= min_vertices and roadmap.component(START) == roadmap.component(GOAL):
                 solution = _query(roadmap, world)
                 if solution is not None:
-                    # A single edge is the straight line: nothing can be shorter.
-                    if refinement.growth <= 1.0 or len(solution) == 2:
-                        return result(PlanStatus.SOLVED, solution, iterations)
                     next_query = math.ceil(len(roadmap) * refinement.growth)
+                    # A single edge is the straight line: nothing can be shorter.
+                    if (refinement.growth <= 1.0 or len(solution) == 2
+                            or next_query > refinement.max_vertices):
+                        return result(PlanStatus.SOLVED, solution, iterations)
         elif len(roadmap) >= next_query:
             shorter = _query(roadmap, world) or solution
             gain = 1.0 - (path_length(roadmap.points(shorter))

@@ -12,10 +12,12 @@ on its own, and the rule is ours: a first answer that is one edge, the straight
 line, is final. Otherwise the roadmap doubles and is queried again, and keeps
 doubling while it has under 256 vertices (cheap; a small roadmap's path improves
 in jumps) or while a doubling shortens the path by at least 3%, as long as the
-doubled roadmap stays within 5000 vertices (about 2 s on a 50x50 maze). Small
-cluttered maps so end within a few percent of the shortest path
-(``benchmarks/shortest_path.py`` measures it); large maps answer after the first
-doubling. If the stop condition fires first, the best path so far is the answer.
+doubled roadmap stays within 5000 vertices (about 2 s on a 50x50 maze); that cap
+binds the first doubling too. Small cluttered maps so end within a few percent of
+the shortest path (``benchmarks/shortest_path.py`` measures it); a map whose first
+answer needs over 2500 vertices answers at once, since doubling would cost as long
+again as the search so far (on a 100x100 map, well past a 30 s limit). If the
+stop condition fires first, the best path so far is the answer.
 Every rule counts vertices, not seconds, so ``-seed`` reproduces the run.
 """
 
@@ -42,8 +44,9 @@ class PRMStarParams:
     """Grow again while the last growth shortened the path by at least this
     fraction (1.0: one growth only)..."""
     max_refined_vertices: int = 5000
-    """... and while the grown roadmap stays within this many vertices (about
-    2 s on a 50x50 maze); the first growth happens anyway."""
+    """... and only while the grown roadmap stays within this many vertices
+    (about 2 s on a 50x50 maze); this binds the first growth too (0: answer at
+    once)."""
     min_refined_vertices: int = 256
     """Below this many vertices grow again even when the last growth gained
     nothing (a small roadmap's path improves in jumps; about 0.05 s)."""

@@ -111,10 +111,30 @@ def test_prmstar_refinement_only_ever_shortens_the_path(seed):
     assert path_length(refined.trajectory) <= path_length(once.trajectory)
     assert refined.stats.tree_nodes >= once.stats.tree_nodes
     assert refined.tree[:len(once.tree)] == once.tree
-    # The vertex cap ends refinement after the first growth, as min_improvement=1 does.
-    capped = prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed),
-                           prmstar.PRMStarParams(max_refined_vertices=0))
-    assert (capped.trajectory, capped.tree) == (once.trajectory, once.tree)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_prmstar_vertex_cap_binds_the_first_growth_too(seed):
+    # A first answer whose doubled roadmap would pass the cap is final (a big map
+    # must not spend as long again growing); a cap the doubled roadmap just fits
+    # allows exactly that one growth.
+    problem = random_field(15, 0.3, random.Random(3))
+
+    def solve(cap, **rules):
+        return prmstar.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(seed),
+                             prmstar.PRMStarParams(max_refined_vertices=cap, **rules))
+
+    first = solve(0)
+    assert_valid_roadmap_answer(problem, first)
+    assert len(first.trajectory) > 2  # not the straight line, which is final anyway
+    first_size = first.stats.tree_nodes
+    once = solve(2 * first_size, min_improvement=1.0, min_refined_vertices=0)
+    assert once.stats.tree_nodes == 2 * first_size
+    assert once.tree[:len(first.tree)] == first.tree
+    fits = solve(2 * first_size)
+    assert (fits.trajectory, fits.tree) == (once.trajectory, once.tree)
+    below = solve(2 * first_size - 1)
+    assert (below.trajectory, below.tree) == (first.trajectory, first.tree)
 
 
 def test_prmstar_refines_where_it_pays():
