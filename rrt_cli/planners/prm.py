@@ -179,7 +179,8 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
     next_query = 0
     while True:
         if solution is None:
-            if len(roadmap) >= min_vertices and roadmap.component(START) == roadmap.component(GOAL):
+            connected = roadmap.component(START) == roadmap.component(GOAL)
+            if connected and len(roadmap) >= min_vertices:
                 solution = _query(roadmap, world)
                 if solution is not None:
                     next_query = math.ceil(len(roadmap) * refinement.growth)
