@@ -179,12 +179,13 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
     next_query = 0
     while True:
         if solution is None:
-            connected = roadmap.component(START) == roadmap.component(GOAL)
-            if connected and len(roadmap) >= min_vertices:
+            if (len(roadmap) >= min_vertices
+                    and roadmap.component(START) == roadmap.component(GOAL)):
                 solution = _query(roadmap, world)
                 if solution is not None:
                     next_query = math.ceil(len(roadmap) * refinement.growth)
-                    # A single edge is the straight line: nothing can be shorter.
+                    # Final if no growth is asked for, if it is the straight line
+                    # (a single edge: nothing is shorter), or if growing passes the cap.
                     if (refinement.growth <= 1.0 or len(solution) == 2
                             or next_query > refinement.max_vertices):
                         return result(PlanStatus.SOLVED, solution, iterations)
