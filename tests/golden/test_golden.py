@@ -1,0 +1,39 @@
+"""Planner output pinned byte for byte: each run's stdout hashes to what
+``golden.json`` recorded before the core was reshaped (issue 13)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from golden_cases import PROBLEM_DIR, SLOW, argv, case_id, cases  # noqa: E402
+
+from tests.conftest import run_planner  # noqa: E402
+
+GOLDEN = json.loads((Path(__file__).resolve().parent / "golden.json").read_text())
+
+
+def _params():
+    for case in cases():
+        ident = case_id(*case)
+        marks = [pytest.mark.slow] if ident in SLOW else []
+        yield pytest.param(case, id=ident, marks=marks)
+
+
+def test_every_case_is_recorded():
+    assert sorted(GOLDEN) == sorted(case_id(*case) for case in cases())
+
+
+@pytest.mark.parametrize("case", _params())
+def test_output_matches_golden(case):
+    vehicle, planner, problem, seed = case
+    done = run_planner(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text())
+    expected = GOLDEN[case_id(*case)]
+    assert done.returncode == expected["exit"], done.stderr.decode()
+    assert len(done.stdout) == expected["bytes"]
+    assert hashlib.sha256(done.stdout).hexdigest() == expected["sha256"]
