@@ -54,7 +54,8 @@ def ompl_installed() -> bool:
 
 def our_planners() -> list[PlannerChoice]:
     from rrt_cli.planners import PLANNERS
-    return [PlannerChoice(name, "ours", name, frozenset(entry.vehicles))
+    return [PlannerChoice(name, "ours", name,
+                          frozenset(v for v in Vehicle if entry.plans_for(v.system)))
             for name, entry in sorted(PLANNERS.items())]
 
 

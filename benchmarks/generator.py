@@ -34,7 +34,7 @@ from pathlib import Path
 
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
-from planning_core.world import connected_free_cells
+from planning_core.worlds.grid import connected_free_cells
 
 SUITE_SEED = 2024
 SIZES = (10, 20, 50, 100, 200, 500)

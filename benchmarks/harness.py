@@ -23,13 +23,16 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import IO, TYPE_CHECKING, Callable, Iterable
 
 from benchmarks.catalog import ROOT, PlannerChoice
 from benchmarks.generator import family_of, problem_id
 from benchmarks.rows import RunRow, RunStatus
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
+
+if TYPE_CHECKING:
+    from planning_core.problem import Problem
 
 LAUNCHER = Path(__file__).resolve().parent / "launch.py"
 _STATS_LINE = re.compile(r"^\S+ stats: (.*)$", re.MULTILINE)
@@ -96,26 +99,66 @@ def _last_line(text: str, limit: int = 200) -> str:
     return lines[-1][:limit] if lines else ""
 
 
+@dataclass(frozen=True)
+class _Finished:
+    """What a planner process left: how it ended, its time, memory and output."""
+
+    exit_status: int          # negative: killed by that signal
+    process_seconds: float
+    peak_memory_mb: float | None
+    stdout: str
+    stderr: str
+    killed: bool              # by the harness, past the hard limit
+
+
+@dataclass(frozen=True)
+class _Outcome:
+    """The harness's verdict on a finished run, and what validating it measured."""
+
+    status: RunStatus
+    failure: str = ""
+    valid: bool | None = None
+    path_length: float | None = None
+    trajectory_lines: int | None = None
+    corner_cuts: int = 0
+    validation_seconds: float = 0.0
+
+
 def run_one(spec: RunSpec, options: HarnessOptions = HarnessOptions()) -> RunRow:
     """Run one planner process to the end and validate what it printed."""
+    problem = parse_problem(spec.problem.read_text())
+    hard_limit = spec.time_limit * 1.1 + options.grace
+    finished = _run_planner(spec, hard_limit)
+    stats = parse_stats(finished.stderr)
+    if finished.killed:
+        outcome = _Outcome(RunStatus.KILLED, f"killed after {hard_limit:.1f} s")
+    elif finished.exit_status == 0:
+        outcome = _validate(problem, spec.vehicle, finished.stdout, options.strict)
+    else:
+        outcome = _unsolved(finished, stats)
+    return _row(spec, problem, finished, stats, outcome)
+
+
+def _planner_env() -> dict[str, str]:
+    """The environment with the project root first on PYTHONPATH."""
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT)] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
+
+
+def _run_planner(spec: RunSpec, hard_limit: float) -> _Finished:
+    """Start the planner through launch.py with the problem on stdin; kill its
+    process group past ``hard_limit`` seconds."""
     import subprocess  # noqa: PLC0415 (the workers need it; the parent may not)
 
-    from validator.checks import validate_output
-
-    problem_text = spec.problem.read_text()
-    problem = parse_problem(problem_text)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(ROOT)] + ([os.environ["PYTHONPATH"]] if os.environ.get("PYTHONPATH") else [])))
     command = spec.planner.command(spec.vehicle, spec.seed, spec.time_limit)
-    hard_limit = spec.time_limit * 1.1 + options.grace
     killed: list[bool] = []
     with open(spec.problem, "rb") as stdin, tempfile.TemporaryFile() as out, \
             tempfile.TemporaryFile() as err, tempfile.TemporaryDirectory() as scratch:
         report_path = os.path.join(scratch, "launch.txt")
         began = time.perf_counter()
         process = subprocess.Popen([sys.executable, "-S", "-I", str(LAUNCHER), report_path,
-                                    *command], stdin=stdin, stdout=out, stderr=err, env=env,
-                                   cwd=ROOT, start_new_session=True)
+                                    *command], stdin=stdin, stdout=out, stderr=err,
+                                   env=_planner_env(), cwd=ROOT, start_new_session=True)
         timer = threading.Timer(hard_limit, _kill_group, (process.pid, killed))
         timer.start()
         try:
@@ -129,57 +172,61 @@ def run_one(spec: RunSpec, options: HarnessOptions = HarnessOptions()) -> RunRow
         launched = _read_launch_report(report_path)
         if launched is not None:
             exit_status, process_seconds, peak_memory_mb = launched
-        out.seek(0)
-        stdout_text = out.read().decode("utf-8", errors="replace")
-        err.seek(0)
-        stderr_text = err.read().decode("utf-8", errors="replace")
+        return _Finished(exit_status, process_seconds, peak_memory_mb, _read_text(out),
+                         _read_text(err), bool(killed))
 
-    stats = parse_stats(stderr_text)
-    planning = _number(stats, "planning_seconds", float)
-    valid = None
-    failure = ""
-    path_length = trajectory_lines = None
-    corner_cuts = 0
-    validation_seconds = 0.0
-    if killed:
-        status = RunStatus.KILLED
-        failure = f"killed after {hard_limit:.1f} s"
-    elif exit_status == 0:
-        checked = time.perf_counter()
-        report = validate_output(problem, spec.vehicle, stdout_text, strict=options.strict)
-        validation_seconds = time.perf_counter() - checked
-        valid = report.valid
-        corner_cuts = len(report.corner_cuts)
-        trajectory_lines = report.trajectory_count
-        if valid:
-            status = RunStatus.SOLVED
-            path_length = report.path_length
-        else:
-            status = RunStatus.INVALID
-            first = report.first_failure
-            failure = f"{first.message} {first.detail}".strip() if first else "invalid"
-    elif exit_status == 3:
+
+def _read_text(handle: IO[bytes]) -> str:
+    handle.seek(0)
+    return handle.read().decode("utf-8", errors="replace")
+
+
+def _validate(problem: Problem, vehicle: Vehicle, stdout_text: str, strict: bool) -> _Outcome:
+    """A run that exited 0: solved if the validator accepts its output, else invalid."""
+    from validator.checks import validate_output
+
+    checked = time.perf_counter()
+    report = validate_output(problem, vehicle, stdout_text, strict=strict)
+    validation_seconds = time.perf_counter() - checked
+    if report.valid:
+        status, failure, path_length = RunStatus.SOLVED, "", report.path_length
+    else:
+        first = report.first_failure
+        status, path_length = RunStatus.INVALID, None
+        failure = f"{first.message} {first.detail}".strip() if first else "invalid"
+    return _Outcome(status, failure, report.valid, path_length, report.trajectory_count,
+                    len(report.corner_cuts), validation_seconds)
+
+
+def _unsolved(finished: _Finished, stats: dict[str, str]) -> _Outcome:
+    """A run that exited non-zero: exit 3 with the planner's reason, or another status."""
+    if finished.exit_status == 3:
         reason = stats.get("status", "")
         status = next((s for s in RunStatus if s.value == reason and s is not RunStatus.SOLVED),
                       RunStatus.NO_SOLUTION)
-        failure = _last_line(stderr_text)
-    else:
-        status = _EXIT_STATUS.get(exit_status, RunStatus.CRASHED)
-        if status is RunStatus.SOLVED:
-            status = RunStatus.CRASHED
-        failure = _last_line(stderr_text) or f"exit status {exit_status}"
+        return _Outcome(status, _last_line(finished.stderr))
+    status = _EXIT_STATUS.get(finished.exit_status, RunStatus.CRASHED)
+    if status is RunStatus.SOLVED:
+        status = RunStatus.CRASHED
+    return _Outcome(status,
+                    _last_line(finished.stderr) or f"exit status {finished.exit_status}")
+
+
+def _row(spec: RunSpec, problem: Problem, finished: _Finished, stats: dict[str, str],
+         outcome: _Outcome) -> RunRow:
     return RunRow(
         problem=problem_id(spec.problem), family=family_of(problem_id(spec.problem)),
         width=problem.width, height=problem.height, vehicle=spec.vehicle.value,
         planner=spec.planner.id, implementation=spec.planner.implementation,
         seed=spec.seed, time_limit=float(spec.time_limit),
-        solved=status is RunStatus.SOLVED, status=status.value, exit_status=exit_status,
-        valid=valid, failure=failure, planning_seconds=planning,
-        process_seconds=process_seconds, path_length=path_length,
+        solved=outcome.status is RunStatus.SOLVED, status=outcome.status.value,
+        exit_status=finished.exit_status, valid=outcome.valid, failure=outcome.failure,
+        planning_seconds=_number(stats, "planning_seconds", float),
+        process_seconds=finished.process_seconds, path_length=outcome.path_length,
         tree_nodes=_number(stats, "tree_nodes", int),
-        iterations=_number(stats, "iterations", int), trajectory_lines=trajectory_lines,
-        peak_memory_mb=peak_memory_mb,
-        corner_cuts=corner_cuts, validation_seconds=validation_seconds)
+        iterations=_number(stats, "iterations", int),
+        trajectory_lines=outcome.trajectory_lines, peak_memory_mb=finished.peak_memory_mb,
+        corner_cuts=outcome.corner_cuts, validation_seconds=outcome.validation_seconds)
 
 
 def order_for_balance(specs: Iterable[RunSpec]) -> list[RunSpec]:

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle, spaceship
-from planning_core.world import GridWorld
+from planning_core.worlds.grid import GridWorld
 
 POINT_PLANNERS = ("rrt", "rrtconnect")
 SPACESHIP_PLANNERS = ("rrt", "kpiece1")

@@ -10,6 +10,8 @@ Conventions (said again in the report's header):
 * "vs OMPL" is the ratio of the median times, ours over OMPL RRT's
   (geometric for the point vehicle, control for the spaceships), on the same
   problems and seeds: below 1 means faster than OMPL.
+* Targets are the data of ``benchmarks/targets.py``; a target this run has no
+  runs to judge is left out of the table.
 """
 
 from __future__ import annotations
@@ -21,6 +23,8 @@ from typing import Iterable, Mapping, Sequence
 
 from benchmarks.catalog import label, reference_planner
 from benchmarks.rows import RunRow
+from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, PathLengthVsPlanner,
+                                PlannerVsPlanner, SpeedVsReference, SuccessWithin, Target)
 from planning_core.vehicles import Vehicle
 
 VEHICLE_ORDER = ("point", "spaceship", "left")
@@ -190,79 +194,21 @@ def problem_table(rows: Sequence[RunRow], vehicle: str) -> list[str]:
 @dataclass(frozen=True)
 class TargetCheck:
     target: str
-    met: bool | None      # None: this run has no data to judge it
+    met: bool | None      # None: this run's data cannot decide it (a zero median)
     detail: str
 
 
-def _success_within(rows: Sequence[RunRow], seconds: float) -> tuple[int, int]:
-    ok = sum(1 for r in rows if r.solved and r.time_seconds <= seconds)
-    return ok, len(rows)
-
-
-def check_targets(rows: Sequence[RunRow],
-                  shortest: Mapping[str, float] | None = None) -> list[TargetCheck]:
-    """The issue's targets, judged on this run's medians (ours = every planner of ours).
+def check_targets(rows: Sequence[RunRow], shortest: Mapping[str, float] | None = None,
+                  targets: Iterable[Target] = TARGETS) -> list[TargetCheck]:
+    """``targets`` (benchmarks/targets.py), judged on this run's medians, in order;
+    those the run has no runs to judge are left out.
 
     ``shortest``: the point vehicle's shortest path length per problem, when known.
     """
     checks: list[TargetCheck] = []
-    ours = sorted({r.planner for r in rows if r.implementation == "ours"})
-
-    def success_target(vehicle: str, max_size: int, seconds: float) -> None:
-        for planner in ours:
-            runs = [r for r in rows if r.vehicle == vehicle and r.planner == planner
-                    and max(r.width, r.height) <= max_size]
-            if not runs:
-                continue
-            misses = []
-            for (problem,), group_rows in sorted(group(runs, "problem").items()):
-                ok, total = _success_within(group_rows, seconds)
-                if ok < total:
-                    misses.append(f"{problem} {ok}/{total}")
-            ok, total = _success_within(runs, seconds)
-            checks.append(TargetCheck(
-                f"{vehicle}: {planner} solves 100% within {seconds:g} s up to "
-                f"{max_size}x{max_size}", not misses,
-                f"{ok}/{total} runs" + (f"; short on {', '.join(misses)}" if misses else "")))
-
-    def speed_target(vehicle: str, min_size: int, factor: float, process: bool = False,
-                     family: str | None = None) -> None:
-        reference_id = reference_planner(Vehicle(vehicle))
-        reference = [r for r in rows if r.vehicle == vehicle and r.planner == reference_id
-                     and max(r.width, r.height) >= min_size
-                     and (family is None or r.family == family)]
-        what = "whole-process" if process else "planning"
-        where = (f"on {family} problems" if family else
-                 f"from {min_size}x{min_size} up" if min_size > 1 else "on all problems")
-        for planner in ours:
-            runs = [r for r in rows if r.vehicle == vehicle and r.planner == planner
-                    and max(r.width, r.height) >= min_size
-                    and (family is None or r.family == family)]
-            if not runs or not reference:
-                continue
-            ratio = median_ratio(runs, reference, process=process)
-            bound = "at most OMPL RRT's" if factor == 1 else f"at most {factor:g}× OMPL RRT's"
-            checks.append(TargetCheck(
-                f"{vehicle}: {planner} median {what} time {where} {bound}",
-                ratio <= factor if math.isfinite(ratio) else None,
-                f"ratio {_ratio(ratio)}"))
-
-    success_target("point", 500, 10.0)
-    speed_target("point", 1, 1.0)
-    speed_target("point", 100, 0.5)
-    success_target("spaceship", 100, 30.0)
-    success_target("spaceship", 200, 120.0)
-    speed_target("spaceship", 1, 0.5)
-    for vehicle in ("point", "spaceship"):
-        speed_target(vehicle, 1, 1.0, process=True, family="course")
-    checks.extend(planner_targets(rows, shortest))
+    for target in targets:
+        checks.extend(_EVALUATORS[type(target)](target, rows, shortest))
     return checks
-
-
-def _ours(rows: Sequence[RunRow], vehicle: str, planner: str,
-          family: str | None = None) -> list[RunRow]:
-    return [r for r in rows if r.vehicle == vehicle and r.planner == planner
-            and r.implementation == "ours" and (family is None or r.family == family)]
 
 
 def planner_targets(rows: Sequence[RunRow],
@@ -274,40 +220,137 @@ def planner_targets(rows: Sequence[RunRow],
 
     With ``shortest`` (per problem), the PRM* line also says what the shortest
     paths themselves would score against RRT's: no planner can do better."""
-    checks: list[TargetCheck] = []
-    for vehicle in ("spaceship", "left"):
-        for family in ("maze", "narrow"):
-            baseline = _ours(rows, vehicle, "rrt", family)
-            ratios = {planner: median_ratio(_ours(rows, vehicle, planner, family), baseline)
-                      for planner in ("kpiece", "rgrrt")}
-            ratios = {planner: ratio for planner, ratio in ratios.items() if math.isfinite(ratio)}
-            if not baseline or not ratios:
-                continue
-            checks.append(TargetCheck(
-                f"{vehicle}: kpiece or rgrrt median planning time on {family} problems at most "
-                f"0.5× our rrt's", min(ratios.values()) <= 0.5,
-                ", ".join(f"{planner} {_ratio(ratio)}" for planner, ratio in ratios.items())))
-    rrt_runs = _ours(rows, "point", "rrt")
-    shorter = path_length_ratios(_ours(rows, "point", "prmstar"), rrt_runs)
-    if shorter:
-        mean_ratio = statistics.fmean(shorter.values())
-        at_least = sum(1 for ratio in shorter.values() if ratio <= 0.8)
-        detail = (f"mean ratio {_ratio(mean_ratio)}; 20% shorter on {at_least}/{len(shorter)} "
-                  "problems")
-        rrt_lengths = _median_path_lengths(rrt_runs)
-        if shortest and all(problem in shortest for problem in shorter):
-            best = [shortest[problem] / rrt_lengths[problem] for problem in shorter]
-            detail += (f"; the shortest paths would score {_ratio(statistics.fmean(best))}, "
-                       f"20% shorter on {sum(1 for ratio in best if ratio <= 0.8)}/{len(best)}")
+    return check_targets(rows, shortest, ISSUE_5_TARGETS)
+
+
+def _side(row: RunRow) -> int:
+    return max(row.width, row.height)
+
+
+def _our_planners(rows: Sequence[RunRow], vehicle: str) -> list[str]:
+    return sorted({r.planner for r in rows
+                   if r.implementation == "ours" and r.vehicle == vehicle})
+
+
+def _runs(rows: Sequence[RunRow], vehicle: str, planner: str, family: str | None = None,
+          min_size: int = 1, max_size: float = math.inf) -> list[RunRow]:
+    return [r for r in rows if r.vehicle == vehicle and r.planner == planner
+            and (family is None or r.family == family) and min_size <= _side(r) <= max_size]
+
+
+def _ours(rows: Sequence[RunRow], vehicle: str, planner: str,
+          family: str | None = None) -> list[RunRow]:
+    return [r for r in _runs(rows, vehicle, planner, family) if r.implementation == "ours"]
+
+
+def _bound(factor: float, whose: str, strict: bool = False) -> str:
+    """The bound in words: at most OMPL RRT's, at most 0.5× our rrt's, below our rrt's."""
+    return (("below" if strict else "at most") + ("" if factor == 1 else f" {factor:g}×")
+            + f" {whose}")
+
+
+def _solved_within(rows: Sequence[RunRow], seconds: float) -> tuple[int, int]:
+    ok = sum(1 for r in rows if r.solved and r.time_seconds <= seconds)
+    return ok, len(rows)
+
+
+def _judge_success(target: SuccessWithin, rows: Sequence[RunRow],
+                   shortest: Mapping[str, float] | None) -> list[TargetCheck]:
+    """A row per planner of ours that ran maps as large as the target's."""
+    checks = []
+    for planner in _our_planners(rows, target.vehicle):
+        runs = _runs(rows, target.vehicle, planner, max_size=target.max_size)
+        if not any(_side(r) == target.max_size for r in runs):
+            continue
+        misses = []
+        for (problem,), group_rows in sorted(group(runs, "problem").items()):
+            ok, total = _solved_within(group_rows, target.seconds)
+            if ok < total:
+                misses.append(f"{problem} {ok}/{total}")
+        ok, total = _solved_within(runs, target.seconds)
         checks.append(TargetCheck(
-            "point: prmstar paths at least 20% shorter than our rrt's (mean over problems of "
-            "the median-length ratio)", mean_ratio <= 0.8, detail))
-    baseline = _ours(rows, "point", "rrt", "maze")
-    ratio = median_ratio(_ours(rows, "point", "rrtconnect", "maze"), baseline)
-    if baseline and math.isfinite(ratio):
-        checks.append(TargetCheck("point: rrtconnect median planning time on maze problems "
-                                  "below our rrt's", ratio < 1.0, f"ratio {_ratio(ratio)}"))
+            f"{target.vehicle}: {planner} solves 100% within {target.seconds:g} s up to "
+            f"{target.max_size}x{target.max_size}", not misses,
+            f"{ok}/{total} runs" + (f"; short on {', '.join(misses)}" if misses else "")))
     return checks
+
+
+def _judge_speed(target: SpeedVsReference, rows: Sequence[RunRow],
+                 shortest: Mapping[str, float] | None) -> list[TargetCheck]:
+    """A row per planner of ours that ran a problem and seed OMPL's RRT ran."""
+    def judged(planner: str) -> list[RunRow]:
+        return _runs(rows, target.vehicle, planner, target.family, min_size=target.min_size)
+
+    reference = judged(reference_planner(Vehicle(target.vehicle)))
+    matched = {(r.problem, r.seed) for r in reference}
+    what = "whole-process" if target.process else "planning"
+    where = (f"on {target.family} problems" if target.family else
+             f"from {target.min_size}x{target.min_size} up" if target.min_size > 1
+             else "on all problems")
+    bound = _bound(target.factor, "OMPL RRT's")
+    checks = []
+    for planner in _our_planners(rows, target.vehicle):
+        runs = judged(planner)
+        if not any((r.problem, r.seed) in matched for r in runs):
+            continue
+        ratio = median_ratio(runs, reference, process=target.process)
+        checks.append(TargetCheck(
+            f"{target.vehicle}: {planner} median {what} time {where} {bound}",
+            ratio <= target.factor if math.isfinite(ratio) else None,
+            f"ratio {_ratio(ratio)}"))
+    return checks
+
+
+def _judge_planner_vs_planner(target: PlannerVsPlanner, rows: Sequence[RunRow],
+                              shortest: Mapping[str, float] | None) -> list[TargetCheck]:
+    """One row, if the baseline and one of the planners share a problem and seed."""
+    baseline = _ours(rows, target.vehicle, target.baseline, target.family)
+    ratios = {planner: median_ratio(_ours(rows, target.vehicle, planner, target.family),
+                                    baseline) for planner in target.planners}
+    ratios = {planner: ratio for planner, ratio in ratios.items() if math.isfinite(ratio)}
+    if not baseline or not ratios:
+        return []
+    best = min(ratios.values())
+    if len(target.planners) == 1:
+        detail = f"ratio {_ratio(best)}"
+    else:
+        detail = ", ".join(f"{planner} {_ratio(ratio)}" for planner, ratio in ratios.items())
+    bound = _bound(target.factor, f"our {target.baseline}'s", target.strict)
+    return [TargetCheck(
+        f"{target.vehicle}: {' or '.join(target.planners)} median planning time on "
+        f"{target.family} problems {bound}",
+        best < target.factor if target.strict else best <= target.factor, detail)]
+
+
+def _judge_path_length(target: PathLengthVsPlanner, rows: Sequence[RunRow],
+                       shortest: Mapping[str, float] | None) -> list[TargetCheck]:
+    """One row, if both planners solved a problem."""
+    baseline = _ours(rows, target.vehicle, target.baseline)
+    ratios = path_length_ratios(_ours(rows, target.vehicle, target.planner), baseline)
+    if not ratios:
+        return []
+    shorter = f"{(1 - target.factor) * 100:g}% shorter"
+    mean_ratio = statistics.fmean(ratios.values())
+    detail = (f"mean ratio {_ratio(mean_ratio)}; {shorter} on "
+              f"{_count_within(ratios.values(), target.factor)}/{len(ratios)} problems")
+    if target.vehicle == "point" and shortest and all(problem in shortest for problem in ratios):
+        baseline_lengths = _median_path_lengths(baseline)
+        best = [shortest[problem] / baseline_lengths[problem] for problem in ratios]
+        detail += (f"; the shortest paths would score {_ratio(statistics.fmean(best))}, "
+                   f"{shorter} on {_count_within(best, target.factor)}/{len(best)}")
+    return [TargetCheck(
+        f"{target.vehicle}: {target.planner} paths at least {shorter} than our "
+        f"{target.baseline}'s (mean over problems of the median-length ratio)",
+        mean_ratio <= target.factor, detail)]
+
+
+def _count_within(ratios: Iterable[float], factor: float) -> int:
+    return sum(1 for ratio in ratios if ratio <= factor)
+
+
+_EVALUATORS = {SuccessWithin: _judge_success, SpeedVsReference: _judge_speed,
+               PlannerVsPlanner: _judge_planner_vs_planner,
+               PathLengthVsPlanner: _judge_path_length}
 
 
 def path_length_ratios(ours: Sequence[RunRow], reference: Sequence[RunRow]) -> dict[str, float]:

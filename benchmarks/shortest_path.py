@@ -28,7 +28,7 @@ from typing import Iterable
 import numpy as np
 
 from benchmarks.generator import PROBLEMS_DIR, problem_id, suite_files
-from planning_core.cell_distance import CellDistanceToGoal
+from planning_core.worlds.grid_distance import CellDistanceToGoal
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
 

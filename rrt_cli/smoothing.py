@@ -22,7 +22,7 @@ import random
 from dataclasses import dataclass
 from typing import Sequence
 
-from planning_core.world import GridWorld
+from planning_core.worlds.grid import GridWorld
 
 Point = tuple[float, float]
 

@@ -6,6 +6,7 @@ import random
 
 import pytest
 
+from planning_core.space_information import grid_space_information
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
@@ -22,7 +23,7 @@ SEEDS = range(20)
 @pytest.mark.parametrize("seed", SEEDS)
 def test_course_problem_solved_and_valid(path, vehicle, seed):
     problem = parse_problem(path.read_text())
-    result = rrt.solve(problem, vehicle, StopCondition(time_limit=60), random.Random(seed))
+    result = rrt.solve(grid_space_information(problem, vehicle), StopCondition(time_limit=60), random.Random(seed))
     assert result.solved, result.status
     output = format_plan(result.trajectory, result.tree)
     report = validate_output(problem, vehicle, output, strict=True)

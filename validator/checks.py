@@ -22,7 +22,7 @@ from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle
 from planning_core.vehicles import spaceship
-from planning_core.world import SAMPLE_STEP, GridWorld
+from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
 
 # The SPEC 3 messages, verbatim.
 PARSE_ERROR = "Error parsing planner output!"

@@ -248,18 +248,43 @@ def _render(out, problem: Problem, vehicle: Vehicle, report: ValidationReport | 
     total_edges = plan.tree_count if plan is not None else 0
     drawn = 0
     if plan is not None:
-        canvas.saveState()
-        # Anything far outside the map (bad output) is cut at the page's edge.
-        path = canvas.beginPath()
-        path.rect(0, 0, layout.page_width, layout.page_height)
-        canvas.clipPath(path, stroke=0, fill=0)
-        drawn = _draw_tree(canvas, plan.tree_rows(), vehicle, layout, options,
-                           options.max_tree_edges_drawn)
-        ops: list[str] = []
-        _polyline_ops(solution_points(report), layout, 0.05, ops)
-        _stroke(canvas, ops, SOLUTION_RGB, options.solution_line_width)
-        canvas.restoreState()
+        drawn = _draw_plan(canvas, report, vehicle, layout, options)
+    _draw_start_and_goal(canvas, problem, layout)
+    if report is not None:
+        _draw_corner_cuts(canvas, report, layout)
+    failure = report.first_failure if report is not None else None
+    if failure is not None and failure.where is not None:
+        _draw_failure_mark(canvas, layout, *failure.where)
 
+    _draw_title(canvas, layout, verdict, _heading(problem, vehicle, report, problem_label),
+                valid=report is not None and report.valid)
+    if plan is not None:
+        _draw_line(canvas, layout, layout.page_height - _MARGIN - 41, _counts(report, drawn),
+                   "Helvetica", 9.5)
+    _draw_captions(canvas, layout, _captions(report, notes), failure is not None)
+    canvas.showPage()
+    canvas.save()
+    return RenderSummary(drawn, total_edges)
+
+
+def _draw_plan(canvas: Canvas, report: ValidationReport, vehicle: Vehicle,
+               layout: PageLayout, options: RenderOptions) -> int:
+    """The tree, then the solution over it; returns how many tree edges were drawn."""
+    canvas.saveState()
+    # Anything far outside the map (bad output) is cut at the page's edge.
+    path = canvas.beginPath()
+    path.rect(0, 0, layout.page_width, layout.page_height)
+    canvas.clipPath(path, stroke=0, fill=0)
+    drawn = _draw_tree(canvas, report.plan.tree_rows(), vehicle, layout, options,
+                       options.max_tree_edges_drawn)
+    ops: list[str] = []
+    _polyline_ops(solution_points(report), layout, 0.05, ops)
+    _stroke(canvas, ops, SOLUTION_RGB, options.solution_line_width)
+    canvas.restoreState()
+    return drawn
+
+
+def _draw_start_and_goal(canvas: Canvas, problem: Problem, layout: PageLayout) -> None:
     s = layout.scale
     sx, sy = layout.to_page(*problem.start)
     canvas.setFillColorRGB(*START_RGB)
@@ -272,46 +297,67 @@ def _render(out, problem: Problem, vehicle: Vehicle, report: ValidationReport | 
         canvas.line(gx - 5, gy, gx + 5, gy)
         canvas.line(gx, gy - 5, gx, gy + 5)
 
-    if report is not None:
-        canvas.setStrokeColorRGB(*CORNER_RGB)
-        canvas.setLineWidth(1.2)
-        for cut in report.corner_cuts[:1000]:
-            cx, cy = _marker_position(layout, *cut.where)
-            canvas.circle(cx, cy, 4.0, stroke=1, fill=0)
 
-    failure = report.first_failure if report is not None else None
-    if failure is not None and failure.where is not None:
-        fx, fy = _marker_position(layout, *failure.where)
-        canvas.setStrokeColorRGB(*FAILURE_RGB)
-        canvas.setLineWidth(1.6)
-        canvas.line(fx - 6, fy - 6, fx + 6, fy + 6)
-        canvas.line(fx - 6, fy + 6, fx + 6, fy - 6)
-        canvas.circle(fx, fy, 8.0, stroke=1, fill=0)
+def _draw_corner_cuts(canvas: Canvas, report: ValidationReport, layout: PageLayout) -> None:
+    canvas.setStrokeColorRGB(*CORNER_RGB)
+    canvas.setLineWidth(1.2)
+    for cut in report.corner_cuts[:1000]:
+        cx, cy = _marker_position(layout, *cut.where)
+        canvas.circle(cx, cy, 4.0, stroke=1, fill=0)
 
-    # Title and captions.
-    text_width = layout.page_width - 2 * _MARGIN
+
+def _draw_failure_mark(canvas: Canvas, layout: PageLayout, x: float, y: float) -> None:
+    fx, fy = _marker_position(layout, x, y)
+    canvas.setStrokeColorRGB(*FAILURE_RGB)
+    canvas.setLineWidth(1.6)
+    canvas.line(fx - 6, fy - 6, fx + 6, fy + 6)
+    canvas.line(fx - 6, fy + 6, fx + 6, fy - 6)
+    canvas.circle(fx, fy, 8.0, stroke=1, fill=0)
+
+
+def _heading(problem: Problem, vehicle: Vehicle, report: ValidationReport | None,
+             problem_label: str) -> str:
+    """The line under the verdict: the problem, the vehicle, and -strict if so."""
+    return (f"{problem_label or 'problem'}: {problem.width} x {problem.height} map, start "
+            f"({problem.start[0]:g}, {problem.start[1]:g}), goal ({problem.goal[0]:g}, "
+            f"{problem.goal[1]:g})   vehicle: {vehicle.value}"
+            + ("   -strict" if report is not None and report.strict else ""))
+
+
+def _counts(report: ValidationReport, drawn: int) -> str:
+    """The line under the heading: what the output held, and the path length."""
+    total_edges = report.plan.tree_count
+    counts = f"{report.plan.trajectory_count} trajectory lines, {total_edges} tree edges"
+    if drawn < total_edges:
+        counts += f" (first {drawn} drawn)"
+    if report.path_length is not None:
+        counts += f", path length {report.path_length:.4g}"
+    return counts
+
+
+def _draw_line(canvas: Canvas, layout: PageLayout, y: float, text: str, font: str,
+               size: float) -> None:
+    """One line of text at the left margin, cut to the page's text width."""
+    width = layout.page_width - 2 * _MARGIN
+    canvas.drawString(_MARGIN, y, _fit(canvas, text, font, size, width))
+
+
+def _draw_title(canvas: Canvas, layout: PageLayout, verdict: str, heading: str,
+                valid: bool) -> None:
+    """The verdict (green when valid, red otherwise) and the heading under it."""
     top = layout.page_height - _MARGIN
-    valid = report is not None and report.valid
     canvas.setFillColorRGB(*(VALID_RGB if valid else SOLUTION_RGB))
     canvas.setFont("Helvetica-Bold", 13)
-    canvas.drawString(_MARGIN, top - 13, _fit(canvas, verdict, "Helvetica-Bold", 13, text_width))
+    _draw_line(canvas, layout, top - 13, verdict, "Helvetica-Bold", 13)
     canvas.setFillGray(0.0)
     canvas.setFont("Helvetica", 9.5)
-    label = problem_label or "problem"
-    heading = (f"{label}: {problem.width} x {problem.height} map, start "
-               f"({problem.start[0]:g}, {problem.start[1]:g}), goal ({problem.goal[0]:g}, "
-               f"{problem.goal[1]:g})   vehicle: {vehicle.value}"
-               + ("   -strict" if report is not None and report.strict else ""))
-    canvas.drawString(_MARGIN, top - 28, _fit(canvas, heading, "Helvetica", 9.5, text_width))
-    if plan is not None:
-        counts = f"{plan.trajectory_count} trajectory lines, {total_edges} tree edges"
-        if drawn < total_edges:
-            counts += f" (first {drawn} drawn)"
-        if report.path_length is not None:
-            counts += f", path length {report.path_length:.4g}"
-        canvas.drawString(_MARGIN, top - 41, _fit(canvas, counts, "Helvetica", 9.5, text_width))
+    _draw_line(canvas, layout, top - 28, heading, "Helvetica", 9.5)
 
+
+def _captions(report: ValidationReport | None, notes: Sequence[str]) -> list[str]:
+    """The notes, then the first failure (or else the first warning)."""
     captions = list(notes)
+    failure = report.first_failure if report is not None else None
     if failure is not None:
         at = f", line {failure.line}" if failure.line is not None else ""
         captions.append(f"First failure (check {failure.number}{at}): {failure.message}")
@@ -321,14 +367,17 @@ def _render(out, problem: Problem, vehicle: Vehicle, report: ValidationReport | 
         captions.append(f"Warning: {report.warnings[0]}"
                         + (f" (+{len(report.warnings) - 1} more)" if len(report.warnings) > 1
                            else ""))
+    return captions
+
+
+def _draw_captions(canvas: Canvas, layout: PageLayout, captions: Sequence[str],
+                   failed: bool) -> None:
+    """Up to three caption lines (magenta after a failure), then the legend."""
     canvas.setFont("Helvetica", 8.5)
-    canvas.setFillColorRGB(*(FAILURE_RGB if failure is not None else (0.0, 0.0, 0.0)))
+    canvas.setFillColorRGB(*(FAILURE_RGB if failed else (0.0, 0.0, 0.0)))
     for k, caption in enumerate(captions[:3]):
-        canvas.drawString(_MARGIN, _MARGIN + _CAPTION_BAND - 12 - 11 * k,
-                          _fit(canvas, caption, "Helvetica", 8.5, text_width))
+        _draw_line(canvas, layout, _MARGIN + _CAPTION_BAND - 12 - 11 * k, caption,
+                   "Helvetica", 8.5)
     canvas.setFont("Helvetica", 7.5)
     canvas.setFillGray(0.35)
-    canvas.drawString(_MARGIN, _MARGIN - 14, _fit(canvas, _LEGEND, "Helvetica", 7.5, text_width))
-    canvas.showPage()
-    canvas.save()
-    return RenderSummary(drawn, total_edges)
+    _draw_line(canvas, layout, _MARGIN - 14, _LEGEND, "Helvetica", 7.5)

@@ -1,4 +1,7 @@
-"""Vehicle models: one module per vehicle, pure functions over plain tuples."""
+"""The course's names for the three grid systems, as the command-line flags say them.
+
+``Vehicle`` is naming only: what each one is lives in :mod:`planning_core.systems`.
+"""
 
 from enum import Enum
 
@@ -11,8 +14,14 @@ class Vehicle(str, Enum):
     LEFT_SPACESHIP = "left"  # -grad -left: thrust angle in [0, pi) only
 
     @property
+    def system(self):
+        """The system this name stands for (:mod:`planning_core.systems`)."""
+        from planning_core.systems import load
+        return load(self.value)
+
+    @property
     def is_spaceship(self) -> bool:
-        return self is not Vehicle.POINT
+        return self.system.kinodynamic
 
     @property
     def line_fields(self) -> int:

@@ -1,8 +1,10 @@
 """Planners, by the name ``-planner`` takes.
 
-Each planner module has a frozen params dataclass and
-``solve(problem, vehicle, stop, rng, params) -> PlanResult``. Modules are
-imported on first use so that start-up only pays for the planner it runs.
+Each planner module has a frozen ``Params`` dataclass and
+``solve(si, stop, rng, params) -> PlanResult`` over a
+:class:`~planning_core.space_information.SpaceInformation`. A planner declares
+the kinds of system it plans for (geometric, kinodynamic); modules are imported
+on first use so that start-up only pays for the planner it runs.
 """
 
 from __future__ import annotations
@@ -10,33 +12,38 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from planning_core.vehicles import Vehicle
+GEOMETRIC = frozenset({"geometric"})
+KINODYNAMIC = frozenset({"kinodynamic"})
+ANY = GEOMETRIC | KINODYNAMIC
 
-_POINT = frozenset({Vehicle.POINT})
-_SPACESHIPS = frozenset({Vehicle.SPACESHIP, Vehicle.LEFT_SPACESHIP})
-_ALL = _POINT | _SPACESHIPS
+
+def system_kind(system) -> str:
+    return "kinodynamic" if system.kinodynamic else "geometric"
 
 
 @dataclass(frozen=True)
 class PlannerEntry:
     module: str
-    vehicles: frozenset
+    kinds: frozenset
     summary: str
 
     def load(self):
         return importlib.import_module(self.module)
 
+    def plans_for(self, system) -> bool:
+        return system_kind(system) in self.kinds
+
 
 PLANNERS: dict[str, PlannerEntry] = {
-    "kpiece": PlannerEntry("rrt_cli.planners.kpiece", _SPACESHIPS,
+    "kpiece": PlannerEntry("rrt_cli.planners.kpiece", KINODYNAMIC,
                            "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)"),
-    "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", _SPACESHIPS,
+    "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", KINODYNAMIC,
                           "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)"),
-    "rrt": PlannerEntry("rrt_cli.planners.rrt", _ALL, "RRT, the course's reference planner"),
-    "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", _POINT,
+    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner"),
+    "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", GEOMETRIC,
                                "bidirectional RRT-Connect (Kuffner & LaValle 2000)"),
-    "prm": PlannerEntry("rrt_cli.planners.prm", _POINT,
+    "prm": PlannerEntry("rrt_cli.planners.prm", GEOMETRIC,
                         "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
-    "prmstar": PlannerEntry("rrt_cli.planners.prmstar", _POINT,
+    "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,
                             "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
 }

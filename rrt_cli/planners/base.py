@@ -45,17 +45,40 @@ class PlanStats:
     planning_seconds: float
 
 
+Edge = tuple  # (from_state, control or None, to_state)
+
+
 @dataclass(frozen=True)
 class PlanResult:
-    """``trajectory`` and ``tree`` hold the rows of the output format (SPEC 2):
-    point vehicle ``(x, y)`` and ``(x1, y1, x2, y2)``; spaceships six numbers."""
+    """What a planner found, as states and controls; the output's rows are made
+    from it in one place (:func:`planning_core.plan_rows.plan_rows`).
+
+    ``path``: the states from the start to the state that reached the goal (empty
+    when unsolved). ``path_controls``: for a kinodynamic system, the control that
+    leads from ``path[i]`` to ``path[i + 1]``. ``edges``: the tree (or roadmap),
+    ``(from_state, control, to_state)``, control None for geometric systems.
+    """
 
     status: PlanStatus
-    trajectory: tuple[tuple[float, ...], ...]
-    tree: tuple[tuple[float, ...], ...]
+    system: object
+    path: tuple[tuple[float, ...], ...]
+    path_controls: tuple[tuple[float, ...], ...]
+    edges: tuple[Edge, ...]
     stats: PlanStats
     message: str = ""
 
     @property
     def solved(self) -> bool:
         return self.status is PlanStatus.SOLVED
+
+    @property
+    def trajectory(self) -> tuple[tuple[float, ...], ...]:
+        """The output's trajectory rows (SPEC 2)."""
+        from planning_core.plan_rows import trajectory_rows
+        return trajectory_rows(self.system, self.path, self.path_controls)
+
+    @property
+    def tree(self) -> tuple[tuple[float, ...], ...]:
+        """The output's tree rows (SPEC 2)."""
+        from planning_core.plan_rows import tree_rows
+        return tree_rows(self.system, self.edges)

@@ -55,12 +55,9 @@ import sys
 import time
 from dataclasses import dataclass
 
-from planning_core.cell_distance import CellDistanceToGoal
-from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle, spaceship
-from planning_core.world import GridWorld
-from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import ship_theta_range, start_state, trajectory_rows, tree_rows
+from planning_core.space_information import SpaceInformation
+from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
+from rrt_cli.planners.tree import MotionTree
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
 _GOAL_DISTANCE_OFFSET = 1e-3
@@ -105,8 +102,6 @@ class KPIECEParams:
     """Most steps a random control is held for."""
     prune_uninteresting: bool = True
     """Drop 95 % of the motions that only reach well-covered cells (as OMPL does)."""
-    goal_tolerance: float = 0.1
-    """A node within this distance of the goal solves the problem."""
     goal_controls: int = 10
     """Controls tried when a goal-biased expansion (step 2's close motion) is made:
     1 is the published algorithm, one random control for a random duration; with
@@ -119,7 +114,7 @@ class KPIECEParams:
     goal_distance: str = "cells"
     """How a state's distance to the goal is measured, for the cells' initial
     scores, the goal bias's close motions and its steering: "cells" (default),
-    along the free cells (:class:`planning_core.cell_distance.CellDistanceToGoal`),
+    along the free cells (:class:`planning_core.worlds.grid_distance.CellDistanceToGoal`),
     or "euclidean", the straight line (the paper's and OMPL's). On a maze the
     straight line points into walls; seed 1, 30 s, ``-grad``: maze-50 solved in
     5 s against not at all, maze-100 in 4 s (with the one-cell ``cell_size``)
@@ -144,8 +139,8 @@ class KPIECEParams:
 Params = KPIECEParams
 
 
-def derived_cell_size(problem: Problem) -> float:
-    return 0.5 if max(problem.width, problem.height) < 20 else 1.0
+def derived_cell_size(width: float, height: float) -> float:
+    return 0.5 if max(width, height) < 20 else 1.0
 
 
 class _Cell:
@@ -274,146 +269,153 @@ def _bisect(items: list, item) -> int:
     return lo
 
 
-def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
-          params: KPIECEParams = KPIECEParams()) -> PlanResult:
-    if not vehicle.is_spaceship:
-        raise ValueError("KPIECE1 plans for the spaceships only")
-    began = time.perf_counter()
-    world = GridWorld(problem)
-    blocked, width, height = world.blocked, world.width, world.height
-    gx, gy = problem.goal
-    tolerance2 = params.goal_tolerance * params.goal_tolerance * (1 - 1e-9)
-    theta_range = ship_theta_range(vehicle)
-    integrate = spaceship.integrate
+class _Search:
+    """One KPIECE1 run: the tree, the projection grid and the close-to-goal motions."""
 
-    inverse_cell = 1.0 / (params.cell_size or derived_cell_size(problem))
-    inverse_velocity_cell = (1.0 / params.velocity_cell_size
-                             if params.velocity_cell_size else None)
+    def __init__(self, si: SpaceInformation, rng: random.Random, params: KPIECEParams):
+        self.si, self.rng, self.params = si, rng, params
+        world = si.world
+        cell_size = params.cell_size or derived_cell_size(world.width, world.height)
+        self.project = _projection(si.system, 1.0 / cell_size, params.velocity_cell_size)
+        self.grid = _CellGrid(len(self.project(si.start)))
+        self.close = _CloseSamples(params.close_samples)
+        self.tree = MotionTree(si.start)
+        self.node_cells: list[_Cell] = []
+        self.iteration = 1
+        along = si.distance_along_free_space() if params.goal_distance == "cells" else None
+        self.goal_distance = ((lambda state: along(state[0], state[1])) if along is not None
+                              else si.goal.distance)
 
-    def project(state) -> tuple[int, ...]:
-        x, y, dx, dy = state
-        if inverse_velocity_cell is None:
-            return (math.floor(x * inverse_cell), math.floor(y * inverse_cell))
-        return (math.floor(x * inverse_cell), math.floor(y * inverse_cell),
-                math.floor(dx * inverse_velocity_cell), math.floor(dy * inverse_velocity_cell))
-
-    grid = _CellGrid(2 if inverse_velocity_cell is None else 4)
-    close = _CloseSamples(params.close_samples)
-    states = [start_state(problem, vehicle)]
-    parents = [-1]
-    controls: list[tuple[float, float] | None] = [None]
-    node_cells: list[_Cell] = []
-    iteration = 1
-
-    if params.goal_distance == "cells":
-        cell_distance = CellDistanceToGoal(problem)
-
-        def goal_distance(state) -> float:
-            return cell_distance(state[0], state[1])
-    else:
-        def goal_distance(state) -> float:
-            return math.hypot(state[0] - gx, state[1] - gy)
-
-    def file_node(node: int, cell: _Cell | None, coord, distance: float) -> _Cell:
+    def file_node(self, node: int, coord, distance: float) -> None:
         """Put a node in its cell (made on first use); one step of coverage."""
+        cell = self.grid.cells.get(coord)
         if cell is None:
-            cell = _Cell(coord, (1.0 + math.log(iteration)) / (_GOAL_DISTANCE_OFFSET + distance),
-                         iteration)
+            cell = _Cell(coord, (1.0 + math.log(self.iteration))
+                         / (_GOAL_DISTANCE_OFFSET + distance), self.iteration)
             cell.motions.append(node)
             cell.coverage = 1
-            grid.add(cell)
+            self.grid.add(cell)
         else:
             cell.motions.append(node)
             cell.coverage += 1
-            grid.update(cell)
-        node_cells.append(cell)
-        return cell
+            self.grid.update(cell)
+        self.node_cells.append(cell)
 
-    def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
-        return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
-                          tree_rows(states, parents, controls, vehicle),
-                          PlanStats(iteration - 1, len(states), time.perf_counter() - began),
-                          message)
-
-    start_distance = goal_distance(states[0])
-    file_node(0, None, project(states[0]), start_distance)
-    if (states[0][0] - gx) ** 2 + (states[0][1] - gy) ** 2 <= tolerance2:
-        return result(PlanStatus.SOLVED, 0)
-    close.consider(0, start_distance)
-
-    steps_buffer: list[tuple[float, float, float, float]] = []
-    while True:
-        limit = stop.status(iteration - 1)
-        if limit is not None:
-            return result(limit, None)
-        iteration += 1
-
-        node = close.select() if rng.random() < params.goal_bias else None
-        steering = node is not None and params.goal_controls > 1
+    def pick(self) -> tuple[int, _Cell, bool]:
+        """The node to expand, its cell, and whether to steer it toward the goal."""
+        rng, params = self.rng, self.params
+        node = self.close.select() if rng.random() < params.goal_bias else None
         if node is not None:
-            cell = node_cells[node]
-        else:
-            cell = _select_cell(grid, rng, params.border_fraction)
-            motions = cell.motions
-            cell.selections += 1
-            # Half-normal over the cell's motions, the newest most likely.
-            back = int(abs(rng.gauss(0.0, len(motions) / 3.0)))
-            node = motions[max(0, len(motions) - 1 - back)]
+            return node, self.node_cells[node], params.goal_controls > 1
+        cell = _select_cell(self.grid, rng, params.border_fraction)
+        motions = cell.motions
+        cell.selections += 1
+        # Half-normal over the cell's motions, the newest most likely.
+        back = int(abs(rng.gauss(0.0, len(motions) / 3.0)))
+        return motions[max(0, len(motions) - 1 - back)], cell, False
 
-        steps_buffer.clear()
-        state = states[node]
+    def motion(self, state, steering: bool) -> tuple[object, list]:
+        """A control and the valid one-step states it leads through (maybe none)."""
+        si, rng, params = self.si, self.rng, self.params
         if steering:
-            control = _steer_to_goal(state, goal_distance, params.goal_controls, theta_range,
-                                     world, rng)
+            control = _steer_to_goal(si, state, self.goal_distance, params.goal_controls, rng)
             wanted = 1 if control is not None else 0
         else:
-            control = (rng.random() * theta_range, rng.random() * spaceship.MAX_THRUST)
+            control = si.sample_control(rng)
             wanted = rng.randint(params.min_steps, params.max_steps)
+        steps = []
         for _ in range(wanted):
-            state = integrate(state, control, blocked, width, height)
-            # Printed states must lie strictly inside the map (SPEC 2).
-            if state is None or not (state[0] > 0.0 and state[1] > 0.0):
+            state = si.propagate_valid(state, control)
+            if state is None:
                 break
-            steps_buffer.append(state)
+            steps.append(state)
+        return control, steps
 
-        if len(steps_buffer) >= (1 if steering else params.min_steps):
-            coords = [project(s) for s in steps_buffer]
-            step_cells = [grid.cells.get(c) for c in coords]
+    def interesting(self, coords) -> bool:
+        """The motion reaches a new cell or one with under 2/3 of the average coverage."""
+        cells = self.grid.cells
+        two_thirds_average = (2 * len(self.tree)) / (3 * len(cells))
+        return any(cells.get(c) is None or cells[c].coverage <= two_thirds_average
+                   for c in coords)
+
+    def add_motion(self, node: int, control, steps, coords) -> int | None:
+        """Chain the motion's steps into the tree; the goal node, if one is reached."""
+        for new_state, coord in zip(steps, coords):
+            node = self.tree.add(node, new_state, control)
+            distance = self.goal_distance(new_state)
+            self.file_node(node, coord, distance)
+            if self.si.goal.reached(new_state):
+                return node
+            self.close.consider(node, distance)
+        return None
+
+    def iterate(self) -> int | None:
+        """One expansion (steps 1-4 of the module docstring); a goal node or None."""
+        params = self.params
+        node, cell, steering = self.pick()
+        control, steps = self.motion(self.tree.states[node], steering)
+        if len(steps) >= (1 if steering else params.min_steps):
+            coords = [self.project(s) for s in steps]
             # A step steered to the goal is kept whatever the coverage: it is
             # there to close in on the goal, not to explore.
-            interesting = steering or not params.prune_uninteresting
-            if not interesting:
-                two_thirds_average = (2 * len(states)) / (3 * len(grid.cells))
-                interesting = any(c is None or c.coverage <= two_thirds_average
-                                  for c in step_cells)
-            if interesting or rng.random() < _KEEP_UNINTERESTING:
-                parent = node
-                for new_state, coord in zip(steps_buffer, coords):
-                    new_node = len(states)
-                    states.append(new_state)
-                    parents.append(parent)
-                    controls.append(control)
-                    distance = goal_distance(new_state)
-                    file_node(new_node, grid.cells.get(coord), coord, distance)
-                    if (new_state[0] - gx) ** 2 + (new_state[1] - gy) ** 2 <= tolerance2:
-                        return result(PlanStatus.SOLVED, new_node)
-                    close.consider(new_node, distance)
-                    parent = new_node
+            keep = (steering or not params.prune_uninteresting or self.interesting(coords)
+                    or self.rng.random() < _KEEP_UNINTERESTING)
+            if keep:
+                goal_node = self.add_motion(node, control, steps, coords)
+                if goal_node is not None:
+                    return goal_node
             cell.score *= params.good_score_factor
         else:
             cell.score *= params.bad_score_factor
-        grid.update(cell)
+        self.grid.update(cell)
+        return None
 
 
-def _steer_to_goal(state, goal_distance, tries: int, theta_range: float, world: GridWorld,
-                   rng: random.Random) -> tuple[float, float] | None:
-    """The free random control, of ``tries``, whose one step ends with the
+def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+          params: KPIECEParams = KPIECEParams()) -> PlanResult:
+    if not si.system.kinodynamic:
+        raise ValueError("KPIECE1 plans for kinodynamic systems only")
+    began = time.perf_counter()
+    search = _Search(si, rng, params)
+    tree, system = search.tree, si.system
+    start_distance = search.goal_distance(si.start)
+    search.file_node(0, search.project(si.start), start_distance)
+    if si.goal.reached(si.start):
+        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+    search.close.consider(0, start_distance)
+    while True:
+        limit = stop.status(search.iteration - 1)
+        if limit is not None:
+            return tree.result(system, limit, None, search.iteration - 1, began)
+        search.iteration += 1
+        goal_node = search.iterate()
+        if goal_node is not None:
+            return tree.result(system, PlanStatus.SOLVED, goal_node, search.iteration - 1,
+                               began)
+
+
+def _projection(system, inverse_cell: float, velocity_cell_size: float | None):
+    """State -> integer cell coordinates of its position (and velocity)."""
+    px, py = system.position_indices
+    floor = math.floor
+    if velocity_cell_size is None or not system.velocity_indices:
+        return lambda state: (floor(state[px] * inverse_cell), floor(state[py] * inverse_cell))
+    vx, vy = system.velocity_indices
+    inverse_velocity = 1.0 / velocity_cell_size
+    return lambda state: (floor(state[px] * inverse_cell), floor(state[py] * inverse_cell),
+                          floor(state[vx] * inverse_velocity),
+                          floor(state[vy] * inverse_velocity))
+
+
+def _steer_to_goal(si: SpaceInformation, state, goal_distance, tries: int,
+                   rng: random.Random):
+    """The valid random control, of ``tries``, whose one step ends with the
     lowest ``goal_distance``."""
     best, best_distance = None, math.inf
     for _ in range(tries):
-        control = (rng.random() * theta_range, rng.random() * spaceship.MAX_THRUST)
-        end = spaceship.integrate(state, control, world.blocked, world.width, world.height)
-        if end is None or not (end[0] > 0.0 and end[1] > 0.0):
+        control = si.sample_control(rng)
+        end = si.propagate_valid(state, control)
+        if end is None:
             continue
         distance = goal_distance(end)
         if distance < best_distance:

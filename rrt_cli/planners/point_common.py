@@ -1,5 +1,5 @@
 """Small helpers shared by the point-vehicle planners (RRT-Connect, PRM, PRM*)
-and the path smoother: where a path may end, free-space sampling, path checks.
+and the path smoother: where a path may end, path length, path checks.
 
 Paths here are sequences of ``(x, y)`` points joined by straight segments,
 each checked exactly against the grid (SPEC 2: printed points strictly inside
@@ -12,8 +12,7 @@ import math
 import random
 from typing import Sequence
 
-from planning_core.problem import Problem
-from planning_core.world import GridWorld
+from planning_core.worlds.grid import GridWorld
 
 # Moves a goal that lies on the map's left or bottom edge (x or y exactly 0,
 # free but not printable) inward; far below the 0.1 goal tolerance and far
@@ -35,26 +34,6 @@ def goal_vertex(world: GridWorld, goal: Point) -> Point:
     if world.point_strictly_inside(x, y):
         return (x, y)
     return (max(x, _EDGE_NUDGE), max(y, _EDGE_NUDGE))
-
-
-def free_cell_indices(problem: Problem) -> list[int]:
-    """Row-major indices (``row * width + column``) of every free cell."""
-    return [index for index, blocked in enumerate(problem.blocked) if not blocked]
-
-
-def sample_free_point(rng: random.Random, free_cells: Sequence[int], width: int) -> Point:
-    """Uniform over the free space: a uniform free cell, then uniform inside it.
-
-    Every cell has the same area, so this is exactly uniform over the free
-    region, without the rejections that make sampling the whole map slow on
-    crowded maps. The point is strictly inside the map.
-    """
-    while True:
-        row, column = divmod(free_cells[int(rng.random() * len(free_cells))], width)
-        x, y = column + rng.random(), row + rng.random()
-        # Cell 0's lower edge is the map's edge: x == 0 or y == 0 is not printable.
-        if x > 0.0 and y > 0.0:
-            return (x, y)
 
 
 def path_length(path: Sequence[Sequence[float]]) -> float:

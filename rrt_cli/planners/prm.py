@@ -27,15 +27,12 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
-from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle
-from planning_core.world import GridWorld
+from planning_core.space_information import SpaceInformation
+from planning_core.worlds.grid import GridWorld, sample_free_point
 from rrt_cli.graph_search import astar
 from rrt_cli.nearest import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.point_common import (
-    first_blocked_segment, free_cell_indices, goal_vertex, path_length, sample_free_point)
-from rrt_cli.planners.rrt import goal_certainly_unreachable
+from rrt_cli.planners.point_common import first_blocked_segment, goal_vertex, path_length
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
 
@@ -47,8 +44,6 @@ class PRMParams:
     min_vertices: int = 0
     """The query waits until the roadmap has this many vertices (0: query as soon
     as start and goal are connected)."""
-    goal_tolerance: float = 0.1
-    """A start within this distance of the goal is already a solution."""
 
 
 Params = PRMParams
@@ -116,9 +111,10 @@ class Roadmap:
     def points(self, path: list[int]) -> list[tuple[float, float]]:
         return [(self.xs[v], self.ys[v]) for v in path]
 
-    def edge_rows(self) -> tuple[tuple[float, float, float, float], ...]:
+    def edge_states(self) -> tuple[tuple, ...]:
+        """``(from, None, to)`` per edge, in the order they were added."""
         xs, ys = self.xs, self.ys
-        return tuple((xs[a], ys[a], xs[b], ys[b]) for a, b in self.edges)
+        return tuple(((xs[a], ys[a]), None, (xs[b], ys[b])) for a, b in self.edges)
 
 
 @dataclass(frozen=True)
@@ -139,10 +135,9 @@ class Refinement:
     roadmap's path moves in jumps, and one growth that gains nothing says little."""
 
 
-def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
-                      rng: random.Random, neighbor_count: Callable[[int], int],
-                      min_vertices: int, refinement: Refinement,
-                      goal_tolerance: float, name: str) -> PlanResult:
+def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+                      neighbor_count: Callable[[int], int], min_vertices: int,
+                      refinement: Refinement, name: str) -> PlanResult:
     """Grow a roadmap until it answers the start-goal query or ``stop`` ends it.
 
     ``neighbor_count(n)``: how many nearest vertices a new vertex tries to join
@@ -152,28 +147,27 @@ def plan_with_roadmap(problem: Problem, vehicle: Vehicle, stop: StopCondition,
     queried again after each growth (the answer can only get shorter). If
     ``stop`` fires in between, the best answer so far is returned.
     """
-    if vehicle is not Vehicle.POINT:
-        raise ValueError(f"{name} plans for the point vehicle only")
+    if si.system.kinodynamic:
+        raise ValueError(f"{name} plans for geometric systems only")
     began = time.perf_counter()
-    world = GridWorld(problem)
+    world = si.world
     roadmap = Roadmap(world)
-    roadmap.add_vertex(*problem.start, neighbors=0)
-    roadmap.add_vertex(*goal_vertex(world, problem.goal), neighbors=1)
+    roadmap.add_vertex(*si.start, neighbors=0)
+    roadmap.add_vertex(*goal_vertex(world, si.goal.point), neighbors=1)
 
     def result(status: PlanStatus, path: list[int] | None, iterations: int, message=""):
         trajectory = () if path is None else tuple(roadmap.points(path))
-        return PlanResult(status, trajectory, roadmap.edge_rows(), PlanStats(
+        return PlanResult(status, si.system, trajectory, (), roadmap.edge_states(), PlanStats(
             iterations, len(roadmap), time.perf_counter() - began), message)
 
-    (sx, sy), (gx, gy) = problem.start, problem.goal
-    if math.hypot(sx - gx, sy - gy) <= goal_tolerance * (1 - 1e-9):
+    if si.goal.reached(si.start):
         return result(PlanStatus.SOLVED, [START], 0)
-    if goal_certainly_unreachable(problem, vehicle):
+    if si.goal_certainly_unreachable():
         return result(PlanStatus.UNREACHABLE, None, 0,
                       "no chain of free cells joins the start and the goal")
 
-    free_cells = free_cell_indices(problem)
-    width = problem.width
+    free_cells = world.free_cell_indices()
+    width = world.width
     iterations = 0
     solution: list[int] | None = None
     next_query = 0
@@ -223,7 +217,7 @@ def _query(roadmap: Roadmap, world: GridWorld) -> list[int] | None:
         roadmap.remove_edge(path[bad], path[bad + 1])
 
 
-def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
+def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: PRMParams = PRMParams()) -> PlanResult:
-    return plan_with_roadmap(problem, vehicle, stop, rng, lambda n: params.neighbors,
-                             params.min_vertices, Refinement(), params.goal_tolerance, "prm")
+    return plan_with_roadmap(si, stop, rng, lambda n: params.neighbors, params.min_vertices,
+                             Refinement(), "prm")

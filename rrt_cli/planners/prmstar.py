@@ -27,8 +27,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle
+from planning_core.space_information import SpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition
 from rrt_cli.planners.prm import Refinement, plan_with_roadmap
 
@@ -52,8 +51,6 @@ class PRMStarParams:
     nothing (a small roadmap's path improves in jumps; about 0.05 s)."""
     min_vertices: int = 0
     """The first query waits until the roadmap has this many vertices."""
-    goal_tolerance: float = 0.1
-    """A start within this distance of the goal is already a solution."""
 
 
 Params = PRMStarParams
@@ -66,9 +63,9 @@ def star_neighbor_count(vertices: int, dimension: int = DIMENSION) -> int:
     return max(1, math.ceil(math.e * (1.0 + 1.0 / dimension) * math.log(vertices)))
 
 
-def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
+def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: PRMStarParams = PRMStarParams()) -> PlanResult:
     refinement = Refinement(params.growth_after_connection, params.min_improvement,
                             params.max_refined_vertices, params.min_refined_vertices)
-    return plan_with_roadmap(problem, vehicle, stop, rng, star_neighbor_count,
-                             params.min_vertices, refinement, params.goal_tolerance, "prmstar")
+    return plan_with_roadmap(si, stop, rng, star_neighbor_count, params.min_vertices,
+                             refinement, "prmstar")

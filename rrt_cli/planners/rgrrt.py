@@ -56,14 +56,10 @@ import random
 import time
 from dataclasses import dataclass
 
-from planning_core.cell_distance import CellDistanceToGoal
-from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle, spaceship
-from planning_core.world import GridWorld
+from planning_core.space_information import SpaceInformation
 from rrt_cli.nearest import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.rrt import (
-    sample_target, ship_theta_range, start_state, trajectory_rows, tree_rows)
+from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
+from rrt_cli.planners.tree import MotionTree
 
 
 @dataclass(frozen=True)
@@ -87,8 +83,6 @@ class RGRRTParams:
     ``guided_share`` 0.2: ``-grad`` 2 of 4 seeds solved by position, 8 of 8 by
     the braking point (median 0.6 s); left-only a median 3.2 s (4 seeds)
     against 0.9 s (8 seeds)."""
-    goal_tolerance: float = 0.1
-    """A node within this distance of the goal solves the problem."""
     angles: int = 8
     """Thrust directions in each node's reachable set, evenly spaced from 0
     (straight ahead): over [0, 2 pi) for the plain ship, over [0, pi] with both
@@ -118,7 +112,7 @@ class RGRRTParams:
     goal_distance: str = "cells"
     """"cells" (default): ``guided_share`` of the iterations add the unused
     reachable state of the whole tree that is nearest the goal along the free
-    cells (:class:`planning_core.cell_distance.CellDistanceToGoal`), a greedy
+    cells (:class:`planning_core.worlds.grid_distance.CellDistanceToGoal`), a greedy
     best-first step; the others draw a target (the goal with ``goal_bias``).
     "euclidean": every iteration draws a target, as the paper has it. Seed 1,
     30 s, ``-grad``, when the step took 5% of the iterations and ranked by
@@ -131,202 +125,186 @@ class RGRRTParams:
         for name in ("goal_bias", "guided_share"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise ValueError(f"{name} must be in [0, 1]")
-        if not self.goal_tolerance > 0.0:
-            raise ValueError("goal_tolerance must be positive")
         if self.angles < 1:
             raise ValueError("angles must be at least 1")
         for name in ("random_controls", "goal_controls"):
             if getattr(self, name) < 0:
                 raise ValueError(f"{name} must be non-negative")
-        for thrust in self.thrusts:
-            if not 0.0 < thrust <= spaceship.MAX_THRUST:
-                raise ValueError(f"thrusts must be in (0, {spaceship.MAX_THRUST}]")
+        if not all(thrust > 0.0 for thrust in self.thrusts):
+            raise ValueError("thrusts must be positive")
 
 
 Params = RGRRTParams
 
 
-def reachable_controls(params: RGRRTParams, theta_range: float) -> list[tuple[float, float]]:
-    """The fixed control set: coasting, then every thrust at every angle."""
-    controls = [(0.0, 0.0)]
-    # The plain ship's range is a full turn: [0, 2 pi) holds every direction once.
-    # The left-only ship's [0, pi] is closed (the validator accepts theta = pi,
-    # SPEC 3) and both ends are in the set: straight ahead and full braking.
-    full_turn = theta_range >= spaceship.THETA_RANGE
-    spacing = theta_range / (params.angles if full_turn or params.angles == 1
-                             else params.angles - 1)
-    for k in range(params.angles):
-        theta = min(spacing * k, theta_range)
-        controls.extend((theta, thrust) for thrust in params.thrusts)
-    return controls
+class _ReachableSets:
+    """Every node's reachable states, indexed like the quadtree of their positions."""
+
+    def __init__(self, width: float, height: float):
+        self.index = QuadtreeNearest(width, height)
+        self.states: list[tuple[float, ...]] = []
+        self.owner: list[int] = []
+        self.control: list[tuple[float, ...]] = []
+        self.used = bytearray()
+        self.child: list[int] = []   # the node a used state became (-1 while unused)
+        # Node k's reachable states are the ids first[k] .. first[k + 1] - 1.
+        self.first: list[int] = [0]
+
+    def __len__(self) -> int:
+        return len(self.states)
+
+    def add(self, owner: int, state, control) -> int:
+        self.index.add(state[0], state[1])
+        self.states.append(state)
+        self.owner.append(owner)
+        self.control.append(control)
+        self.used.append(0)
+        self.child.append(-1)
+        return len(self.states) - 1
+
+    def closest_of(self, node: int, node_state, tx: float, ty: float) -> int:
+        """``node``'s reachable state closest to (tx, ty), or -1 when the node
+        itself is closer than all of them."""
+        nx, ny = node_state[0], node_state[1]
+        best, best_d2 = -1, (nx - tx) ** 2 + (ny - ty) ** 2
+        for candidate in range(self.first[node], self.first[node + 1]):
+            rx, ry = self.states[candidate][0], self.states[candidate][1]
+            d2 = (rx - tx) ** 2 + (ry - ty) ** 2
+            if d2 <= best_d2:
+                best, best_d2 = candidate, d2
+        return best
 
 
-def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
-          params: RGRRTParams = RGRRTParams()) -> PlanResult:
-    if not vehicle.is_spaceship:
-        raise ValueError("RG-RRT plans for the spaceships only")
-    began = time.perf_counter()
-    world = GridWorld(problem)
-    blocked, width, height = world.blocked, world.width, world.height
-    gx, gy = problem.goal
-    tolerance2 = params.goal_tolerance * params.goal_tolerance * (1 - 1e-9)
-    theta_range = ship_theta_range(vehicle)
-    fixed_controls = reachable_controls(params, theta_range)
-    integrate = spaceship.integrate
+class _Search:
+    """One RG-RRT run: the tree, the reachable sets and the best-first queue."""
 
-    states = [start_state(problem, vehicle)]
-    parents = [-1]
-    controls: list[tuple[float, float] | None] = [None]
-    # One entry per reachable state, indexed like the quadtree's points.
-    reachable = QuadtreeNearest(width, height)
-    reach_states: list[tuple[float, float, float, float]] = []
-    reach_owner: list[int] = []
-    reach_control: list[tuple[float, float]] = []
-    reach_used = bytearray()
-    # The node each used reachable state became (-1 while unused).
-    reach_child: list[int] = []
-    # Node k's reachable states are the ids reach_first[k] .. reach_first[k + 1] - 1.
-    reach_first: list[int] = [0]
-    iterations = 0
-    guided = params.goal_distance == "cells"
-    if guided:
-        cell_distance = CellDistanceToGoal(problem)
-        # Every reachable state by its distance to the goal; used ones are
-        # skipped when they come to the top.
-        by_distance: list[tuple[float, int]] = []
-        guide_key = (stopping_point_key(cell_distance, world) if params.guide_by_stopping_point
-                     else lambda state: cell_distance(state[0], state[1]))
+    def __init__(self, si: SpaceInformation, rng: random.Random, params: RGRRTParams):
+        self.si, self.rng, self.params = si, rng, params
+        self.fixed_controls = si.system.reachable_controls(params.angles, params.thrusts)
+        self.tree = MotionTree(si.start)
+        self.reach = _ReachableSets(si.world.width, si.world.height)
+        self.iterations = 0
+        along = si.distance_along_free_space() if params.goal_distance == "cells" else None
+        self.guided = along is not None
+        # Every reachable state by its distance to the goal; used ones are skipped
+        # when they come to the top.
+        self.by_distance: list[tuple[float, int]] = []
+        if self.guided:
+            self.guide_key = (stopping_point_key(along, si) if params.guide_by_stopping_point
+                              else lambda state: along(state[0], state[1]))
 
-    def result(status: PlanStatus, goal_node: int | None, message: str = "") -> PlanResult:
-        return PlanResult(status, trajectory_rows(states, parents, controls, vehicle, goal_node),
-                          tree_rows(states, parents, controls, vehicle),
-                          PlanStats(iterations, len(states), time.perf_counter() - began),
-                          message)
-
-    def add_node(parent: int, state, control) -> int:
-        states.append(state)
-        parents.append(parent)
-        controls.append(control)
-        return len(states) - 1
-
-    def expand_reachable(node: int) -> int | None:
-        """File the node's reachable states; a goal node made from one, if any."""
-        state = states[node]
+    def node_controls(self, state) -> list:
+        """The fixed set, plus random controls when asked or when the goal is in reach."""
+        params, si = self.params, self.si
         extra = params.random_controls
-        x, y, dx, dy = state
-        if params.goal_controls and (math.hypot(x - gx, y - gy)
-                                     <= math.hypot(dx, dy) + spaceship.MAX_THRUST):
+        if params.goal_controls and si.goal.distance(state) <= si.system.step_reach(state):
             extra += params.goal_controls
-        node_controls = fixed_controls
-        if extra:
-            node_controls = fixed_controls + [
-                (rng.random() * theta_range, rng.random() * spaceship.MAX_THRUST)
-                for _ in range(extra)]
-        for control in node_controls:
-            end = integrate(state, control, blocked, width, height)
-            # Printed states must lie strictly inside the map (SPEC 2).
-            if end is None or not (end[0] > 0.0 and end[1] > 0.0) or end == state:
+        if not extra:
+            return self.fixed_controls
+        return self.fixed_controls + [si.sample_control(self.rng) for _ in range(extra)]
+
+    def expand(self, node: int) -> int | None:
+        """File the node's reachable states; a goal node made from one, if any."""
+        si, tree, reach = self.si, self.tree, self.reach
+        state = tree.states[node]
+        for control in self.node_controls(state):
+            end = si.propagate_valid(state, control)
+            if end is None or end == state:
                 continue  # (coasting at rest goes nowhere: no duplicate node)
-            if (end[0] - gx) ** 2 + (end[1] - gy) ** 2 <= tolerance2:
-                return add_node(node, end, control)
-            reachable.add(end[0], end[1])
-            reach_states.append(end)
-            reach_owner.append(node)
-            reach_control.append(control)
-            reach_used.append(0)
-            reach_child.append(-1)
-            if guided:
-                heapq.heappush(by_distance, (guide_key(end), len(reach_states) - 1))
-        reach_first.append(len(reach_states))
+            if si.goal.reached(end):
+                return tree.add(node, end, control)
+            chosen = reach.add(node, end, control)
+            if self.guided:
+                heapq.heappush(self.by_distance, (self.guide_key(end), chosen))
+        reach.first.append(len(reach))
         return None
 
-    def take_reachable(chosen: int) -> int | None:
+    def take(self, chosen: int) -> int | None:
         """Make reachable state ``chosen`` a node; a goal node it leads to, if any."""
-        reach_used[chosen] = 1
-        node = add_node(reach_owner[chosen], reach_states[chosen], reach_control[chosen])
-        reach_child[chosen] = node
-        return expand_reachable(node)
+        reach = self.reach
+        reach.used[chosen] = 1
+        node = self.tree.add(reach.owner[chosen], reach.states[chosen], reach.control[chosen])
+        reach.child[chosen] = node
+        return self.expand(node)
 
-    if (problem.start[0] - gx) ** 2 + (problem.start[1] - gy) ** 2 <= tolerance2:
-        return result(PlanStatus.SOLVED, 0)
-    goal_node = expand_reachable(0)
-    if goal_node is not None:
-        return result(PlanStatus.SOLVED, goal_node)
+    def best_first(self) -> int:
+        """The unused reachable state nearest the goal by the guide, or -1."""
+        while self.by_distance:
+            _, candidate = heapq.heappop(self.by_distance)
+            if not self.reach.used[candidate]:
+                return candidate
+        return -1
 
-    while True:
-        limit = stop.status(iterations)
-        if limit is not None:
-            return result(limit, None)
-        if len(reach_states) == len(states) - 1:
-            # Every reachable state is a node already (all but the start are).
-            return result(PlanStatus.UNREACHABLE, None,
-                          "no reachable state is left to extend to")
-        iterations += 1
-        if guided and rng.random() < params.guided_share:
-            # Best-first toward the goal along the free cells (goal_distance).
-            chosen = -1
-            while by_distance:
-                _, candidate = heapq.heappop(by_distance)
-                if not reach_used[candidate]:
-                    chosen = candidate
-                    break
-            if chosen < 0:
-                continue
-            goal_node = take_reachable(chosen)
-            if goal_node is not None:
-                return result(PlanStatus.SOLVED, goal_node)
-            continue
-        if rng.random() < params.goal_bias:
-            tx, ty = gx, gy
-        else:
-            tx, ty = sample_target(rng, width, height)
-
-        chosen = reachable.nearest(tx, ty)
-        while chosen >= 0 and reach_used[chosen]:
-            # That state is a node already: go on from it, to its own reachable
-            # state closest to the target, or give up on the target if the node
-            # is closer than all of them (the same rule as below, one level down).
-            node = reach_child[chosen]
-            nx, ny = states[node][0], states[node][1]
-            best, best_d2 = -1, (nx - tx) ** 2 + (ny - ty) ** 2
-            for candidate in range(reach_first[node], reach_first[node + 1]):
-                rx, ry = reach_states[candidate][0], reach_states[candidate][1]
-                d2 = (rx - tx) ** 2 + (ry - ty) ** 2
-                if d2 <= best_d2:
-                    best, best_d2 = candidate, d2
-            chosen = best
+    def toward(self, tx: float, ty: float) -> int:
+        """The reachable state to add for target (tx, ty), or -1 to reject it."""
+        reach, states = self.reach, self.tree.states
+        chosen = reach.index.nearest(tx, ty)
+        while chosen >= 0 and reach.used[chosen]:
+            # That state is a node already: go on from it, one level down, by the
+            # same rule as below.
+            node = reach.child[chosen]
+            chosen = reach.closest_of(node, states[node], tx, ty)
         if chosen < 0:
-            continue
-        owner = reach_owner[chosen]
-        ox, oy = states[owner][0], states[owner][1]
-        rx, ry = reach_states[chosen][0], reach_states[chosen][1]
+            return -1
+        ox, oy = states[reach.owner[chosen]][0], states[reach.owner[chosen]][1]
+        rx, ry = reach.states[chosen][0], reach.states[chosen][1]
         if (ox - tx) ** 2 + (oy - ty) ** 2 < (rx - tx) ** 2 + (ry - ty) ** 2:
-            continue  # the target lies behind the node: no move of it gets closer
-        goal_node = take_reachable(chosen)
-        if goal_node is not None:
-            return result(PlanStatus.SOLVED, goal_node)
+            return -1  # the target lies behind the node: no move of it gets closer
+        return chosen
+
+    def iterate(self) -> int | None:
+        """One iteration (module docstring); a goal node or None."""
+        rng, params = self.rng, self.params
+        self.iterations += 1
+        if self.guided and rng.random() < params.guided_share:
+            chosen = self.best_first()
+        else:
+            if rng.random() < params.goal_bias:
+                tx, ty = self.si.goal.point
+            else:
+                tx, ty = self.si.sample_target(rng)
+            chosen = self.toward(tx, ty)
+        return self.take(chosen) if chosen >= 0 else None
+
+
+def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+          params: RGRRTParams = RGRRTParams()) -> PlanResult:
+    if not si.system.kinodynamic:
+        raise ValueError("RG-RRT plans for kinodynamic systems only")
+    began = time.perf_counter()
+    search = _Search(si, rng, params)
+    tree, system = search.tree, si.system
+    if si.goal.reached(si.start):
+        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+    goal_node = search.expand(0)
+    while goal_node is None:
+        limit = stop.status(search.iterations)
+        if limit is not None:
+            return tree.result(system, limit, None, search.iterations, began)
+        if len(search.reach) == len(tree) - 1:
+            # Every reachable state is a node already (all but the start are).
+            return tree.result(system, PlanStatus.UNREACHABLE, None, search.iterations,
+                               began, "no reachable state is left to extend to")
+        goal_node = search.iterate()
+    return tree.result(system, PlanStatus.SOLVED, goal_node, search.iterations, began)
 
 
 # Ranks a braking line that meets a blocked cell after every free one (well below
-# CellDistanceToGoal's "unreachable", so those still order among themselves).
+# the distance's "unreachable", so those still order among themselves).
 _BLOCKED_BRAKING_PENALTY = 1e6
 
 
-def stopping_point_key(cell_distance: CellDistanceToGoal, world: GridWorld):
-    """State -> free-cell distance to the goal of where full braking would stop it."""
-    # Constant deceleration a from speed v stops after v**2 / (2 a); along the
-    # velocity (dx, dy) of length v that is (dx, dy) * v / (2 a).
-    reach = 1.0 / (2.0 * spaceship.MAX_THRUST)
-    unreachable = cell_distance.unreachable
+def stopping_point_key(along, si: SpaceInformation):
+    """State -> distance to the goal along free space of where full braking would
+    stop it (:meth:`stopping_point` of the system)."""
+    stopping_point, first_hit = si.system.stopping_point, si.first_hit
+    unreachable = along.unreachable
 
     def key(state) -> float:
-        x, y, dx, dy = state
-        ahead = math.hypot(dx, dy) * reach
-        sx, sy = x + dx * ahead, y + dy * ahead
-        distance = cell_distance(sx, sy)
-        if (distance >= unreachable
-                or world.first_blocked_cell_on_segment(x, y, sx, sy) is not None):
-            return cell_distance(x, y) + _BLOCKED_BRAKING_PENALTY
+        stop_at = stopping_point(state)
+        distance = along(stop_at[0], stop_at[1])
+        if distance >= unreachable or first_hit(state, stop_at) is not None:
+            return along(state[0], state[1]) + _BLOCKED_BRAKING_PENALTY
         return distance
 
     return key

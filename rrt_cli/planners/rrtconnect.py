@@ -17,7 +17,7 @@ so the path ends exactly at the goal.
 
 The paper draws targets uniformly; here, by default, 90% come from the trees'
 frontier (free cells without a node beside cells with one,
-:mod:`rrt_cli.planners.frontier`), which in a maze is what keeps the trees
+:mod:`planning_core.worlds.grid_frontier`), which in a maze is what keeps the trees
 advancing: see ``RRTConnectParams.frontier_targets`` (0 restores the paper).
 
 The tree section of the output lists both trees' edges, goal-tree edges
@@ -32,15 +32,14 @@ import time
 from dataclasses import dataclass
 from enum import Enum
 
-from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle
-from planning_core.world import GridWorld
+from planning_core.space_information import SpaceInformation
+from planning_core.worlds.grid import sample_free_point
+from planning_core.worlds.grid_frontier import FrontierCells
 from rrt_cli.nearest import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
-from rrt_cli.planners.frontier import FrontierCells
-from rrt_cli.planners.point_common import free_cell_indices, goal_vertex, sample_free_point
-from rrt_cli.planners.rrt import goal_certainly_unreachable, sample_target
-from rrt_cli.steering import PointSteering
+from rrt_cli.planners.point_common import goal_vertex
+from rrt_cli.planners.steering import StraightLineSteering
+from rrt_cli.planners.tree import MotionTree
 
 
 @dataclass(frozen=True)
@@ -63,13 +62,10 @@ class RRTConnectParams:
     lie inside walls and only feed extensions that stop at the wall."""
     frontier_targets: float = 0.9
     """Share of the random targets drawn from the trees' frontier: free cells
-    no node lies in yet next to a cell one does (:mod:`rrt_cli.planners.frontier`);
+    no node lies in yet next to a cell one does (:mod:`planning_core.worlds.grid_frontier`);
     the rest are drawn as ``free_space_targets`` says. 0 gives the published
     RRT-Connect. In a 100x100 maze this takes the median time from about 80 s
     to under 1 s; the uniform share keeps every free point a possible target."""
-    goal_tolerance: float = 0.1
-    """A start within this distance of the goal is already a solution."""
-
     def __post_init__(self):
         if not 0.0 <= self.frontier_targets <= 1.0:
             raise ValueError("frontier_targets must be in [0, 1]")
@@ -84,43 +80,32 @@ class _Grow(Enum):
     REACHED = "reached"    # a node added at the target
 
 
-class _Tree:
-    """One tree: positions, parents (-1 for the root) and a nearest index."""
+class _Tree(MotionTree):
+    """One tree with a nearest index over its positions."""
 
     def __init__(self, root: tuple[float, float], width: int, height: int, toward_root: bool):
-        self.states = [root]
-        self.parents = [-1]
+        super().__init__(root)
         self.index = QuadtreeNearest(width, height)
         self.index.add(*root)
         # The goal tree's edges are travelled child -> parent by the final path.
         self.toward_root = toward_root
 
     def path_to_root(self, node: int) -> list[tuple[float, float]]:
-        path = []
-        while node != -1:
-            path.append(self.states[node])
-            node = self.parents[node]
-        return path
-
-    def edges(self) -> list[tuple[float, ...]]:
-        states, parents = self.states, self.parents
-        if self.toward_root:
-            return [states[k] + states[parents[k]] for k in range(1, len(states))]
-        return [states[parents[k]] + states[k] for k in range(1, len(states))]
+        return [self.states[k] for k in reversed(self.path_to(node))]
 
 
 class _Grower:
     """Extends a tree one step toward a target (OMPL's growTree)."""
 
-    def __init__(self, world: GridWorld, params: RRTConnectParams, rng: random.Random,
+    def __init__(self, si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
                  frontier: FrontierCells | None):
-        self.world = world
+        self.si = si
         self.frontier = frontier
         self.max_step = params.max_step
-        self.extend_steering = PointSteering(world, params.partial_extension,
-                                             params.min_extension, params.wall_clearance)
-        self.connect_steering = PointSteering(world, params.partial_connect,
-                                              params.min_extension, params.wall_clearance)
+        self.extend_steering = StraightLineSteering(si, params.partial_extension,
+                                                    params.min_extension, params.wall_clearance)
+        self.connect_steering = StraightLineSteering(si, params.partial_connect,
+                                                     params.min_extension, params.wall_clearance)
         self.rng = rng
 
     def grow(self, tree: _Tree, target: tuple[float, float],
@@ -141,66 +126,67 @@ class _Grower:
         if step is None:
             return _Grow.TRAPPED, -1
         new = step[0]
-        if tree.toward_root and self.world.first_blocked_cell_on_segment(
-                new[0], new[1], nx, ny) is not None:
+        if tree.toward_root and self.si.first_hit(new, (nx, ny)) is not None:
             return _Grow.TRAPPED, -1  # free one way only: a rounding tie at a cell edge
-        tree.states.append(new)
-        tree.parents.append(near)
-        added = tree.index.add(*new)
+        added = tree.add(near, new)
+        tree.index.add(*new)
         if self.frontier is not None:
             self.frontier.cover(new)
         reached = not clipped and new == target
         return (_Grow.REACHED if reached else _Grow.ADVANCED), added
 
 
-def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.Random,
-          params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
-    if vehicle is not Vehicle.POINT:
-        raise ValueError("rrtconnect plans for the point vehicle only")
-    began = time.perf_counter()
-    world = GridWorld(problem)
-    width, height = problem.width, problem.height
-    start = problem.start
-    goal = goal_vertex(world, problem.goal)
-    start_tree = _Tree(start, width, height, toward_root=False)
-    goal_tree = _Tree(goal, width, height, toward_root=True)
-    frontier = FrontierCells(problem) if params.frontier_targets > 0.0 else None
-    grower = _Grower(world, params, rng, frontier)
-
-    def result(status: PlanStatus, trajectory, iterations: int, message: str = ""):
-        tree = start_tree.edges() + goal_tree.edges()
-        nodes = len(start_tree.states) + len(goal_tree.states)
-        return PlanResult(status, tuple(trajectory), tuple(tree),
-                          PlanStats(iterations, nodes, time.perf_counter() - began), message)
-
-    gx, gy = problem.goal
-    if math.hypot(start[0] - gx, start[1] - gy) <= params.goal_tolerance * (1 - 1e-9):
-        return result(PlanStatus.SOLVED, [start], 0)
-    if goal_certainly_unreachable(problem, vehicle):
-        return result(PlanStatus.UNREACHABLE, (), 0,
-                      "no chain of free cells joins the start and the goal")
-
+def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
+                    frontier: FrontierCells | None):
+    """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
     if params.free_space_targets:
-        free_cells = free_cell_indices(problem)
+        free_cells, width = si.world.free_cell_indices(), si.world.width
 
         def draw_uniform_target():
             return sample_free_point(rng, free_cells, width)
     else:
         def draw_uniform_target():
-            return sample_target(rng, width, height)
+            return si.sample_target(rng)
 
     if frontier is None:
-        draw_target = draw_uniform_target
-    else:
+        return draw_uniform_target
+    frontier_share = params.frontier_targets
+
+    def draw_target():
+        if frontier and rng.random() < frontier_share:
+            return frontier.sample(rng)
+        return draw_uniform_target()
+
+    return draw_target
+
+
+def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+          params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
+    if si.system.kinodynamic:
+        raise ValueError("rrtconnect plans for geometric systems only")
+    began = time.perf_counter()
+    width, height = si.world.width, si.world.height
+    start, goal = si.start, goal_vertex(si.world, si.goal.point)
+    start_tree = _Tree(start, width, height, toward_root=False)
+    goal_tree = _Tree(goal, width, height, toward_root=True)
+
+    def result(status: PlanStatus, path, iterations: int, message: str = ""):
+        edges = start_tree.edges() + goal_tree.edges(toward_root=True)
+        stats = PlanStats(iterations, len(start_tree) + len(goal_tree),
+                          time.perf_counter() - began)
+        return PlanResult(status, si.system, tuple(path), (), tuple(edges), stats, message)
+
+    if si.goal.reached(start):
+        return result(PlanStatus.SOLVED, [start], 0)
+    if si.goal_certainly_unreachable():
+        return result(PlanStatus.UNREACHABLE, (), 0,
+                      "no chain of free cells joins the start and the goal")
+    frontier = si.world.frontier() if params.frontier_targets > 0.0 else None
+    if frontier is not None:
         frontier.cover(start)
         frontier.cover(goal)
-        frontier_share = params.frontier_targets
-
-        def draw_target():
-            if frontier and rng.random() < frontier_share:
-                return frontier.sample(rng)
-            return draw_uniform_target()
-
+    grower = _Grower(si, params, rng, frontier)
+    draw_target = _target_sampler(si, params, rng, frontier)
     active, other = start_tree, goal_tree
     iterations = 0
     while True:
@@ -208,21 +194,27 @@ def solve(problem: Problem, vehicle: Vehicle, stop: StopCondition, rng: random.R
         if limit is not None:
             return result(limit, (), iterations)
         iterations += 1
-        outcome, added = grower.grow(active, draw_target())
-        if outcome is not _Grow.TRAPPED:
-            meeting = active.states[added]
-            # Connect: keep stepping the other tree toward the new node.
-            connect = _Grow.ADVANCED
-            while connect is _Grow.ADVANCED:
-                connect, reached = grower.grow(other, meeting, connecting=True)
-            if connect is _Grow.REACHED:
-                if active is start_tree:
-                    start_node, goal_node = added, reached
-                else:
-                    start_node, goal_node = reached, added
-                head = start_tree.path_to_root(start_node)
-                head.reverse()
-                # Both trees hold the meeting point: print it once.
-                tail = goal_tree.path_to_root(goal_node)[1:]
-                return result(PlanStatus.SOLVED, head + tail, iterations)
+        path = _extend_and_connect(grower, active, other, start_tree, draw_target())
+        if path is not None:
+            return result(PlanStatus.SOLVED, path, iterations)
         active, other = other, active
+
+
+def _extend_and_connect(grower: _Grower, active: _Tree, other: _Tree, start_tree: _Tree,
+                        target) -> list | None:
+    """Extend ``active`` toward ``target``, then connect ``other`` to the new node;
+    the path from start to goal when they meet."""
+    outcome, added = grower.grow(active, target)
+    if outcome is _Grow.TRAPPED:
+        return None
+    meeting = active.states[added]
+    connect = _Grow.ADVANCED
+    while connect is _Grow.ADVANCED:
+        connect, reached = grower.grow(other, meeting, connecting=True)
+    if connect is not _Grow.REACHED:
+        return None
+    start_node, goal_node = (added, reached) if active is start_tree else (reached, added)
+    goal_tree = other if active is start_tree else active
+    head = [start_tree.states[k] for k in start_tree.path_to(start_node)]
+    # Both trees hold the meeting point: print it once.
+    return head + goal_tree.path_to_root(goal_node)[1:]

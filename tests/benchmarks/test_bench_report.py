@@ -8,6 +8,8 @@ import numpy as np
 from benchmarks import report
 from benchmarks.report import Spread, markdown_report, median_ratio, summary_table
 from benchmarks.rows import RunRow
+from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, PathLengthVsPlanner,
+                                PlannerVsPlanner, SpeedVsReference, SuccessWithin)
 
 
 def row(planner: str, problem: str, seed: int, seconds: float, solved: bool = True,
@@ -84,9 +86,9 @@ def test_report_has_a_table_per_vehicle_targets_and_failures():
             for s in range(3)]
     rows += [row("ompl-rrt", "course-space-1", s, 0.05, family="course", size=10)
              for s in range(3)]
-    rows += [row("rrt", "course-space-1", s, 30.0, solved=False, vehicle="spaceship",
-                 family="course", size=10) for s in range(2)]
-    bad = row("rrt", "maze-20", 9, 0.3)
+    rows += [row("rrt", "maze-100", s, 30.0, solved=False, vehicle="spaceship", size=100)
+             for s in range(2)]
+    bad = row("rrt", "maze-500", 9, 0.3, size=500)
     bad = RunRow(**{**bad.__dict__, "solved": False, "valid": False, "status": "invalid",
                     "failure": "Trajectory collides with an obstacle! | line 4"})
     rows.append(bad)
@@ -97,11 +99,64 @@ def test_report_has_a_table_per_vehicle_targets_and_failures():
     assert "Trajectory collides with an obstacle!" in text and "invalid" in text
     targets = {check.target: check for check in report.check_targets(rows)}
     success = targets["point: rrt solves 100% within 10 s up to 500x500"]
-    assert success.met is False and "maze-20 0/1" in success.detail
+    assert success.met is False and success.detail == "3/4 runs; short on maze-500 0/1"
     ship = targets["spaceship: rrt solves 100% within 30 s up to 100x100"]
     assert ship.met is False
+    assert "spaceship: rrt solves 100% within 120 s up to 200x200" not in targets  # no 200x200
     speed = targets["point: rrt median planning time on all problems at most OMPL RRT's"]
     assert speed.met is True  # 0.02 s median (course) ... vs OMPL's 0.05 s
+
+
+def test_targets_without_runs_to_judge_are_left_out():
+    # As the smoke preset runs: small course maps only, ours and OMPL's on the same seeds.
+    rows = [row(planner, f"course-space-{k}", seed, 0.1, family="course", size=10,
+                vehicle=vehicle)
+            for vehicle in ("point", "spaceship") for planner in ("rrt", "ompl-rrt")
+            for k in range(2) for seed in (1, 2)]
+    listed = [check.target for check in report.check_targets(rows)]
+    assert listed == [
+        "point: rrt median planning time on all problems at most OMPL RRT's",
+        "spaceship: rrt median planning time on all problems at most 0.5× OMPL RRT's",
+        "point: rrt median whole-process time on course problems at most OMPL RRT's",
+        "spaceship: rrt median whole-process time on course problems at most OMPL RRT's"]
+    text = markdown_report(rows, {"preset": "smoke"})
+    assert "solves 100%" not in text and "from 100x100 up" not in text
+    # A map as large as the target's: the success target is judged on every map up to it.
+    big = rows + [row("rrt", "open-500", 1, 2.0, family="open", size=500)]
+    success = [c for c in report.check_targets(big) if "solves 100%" in c.target]
+    assert [(c.target, c.met, c.detail) for c in success] == [
+        ("point: rrt solves 100% within 10 s up to 500x500", True, "5/5 runs")]
+    # OMPL's RRT on other seeds than ours: nothing to compare, no speed target.
+    apart = [r for r in rows if r.planner == "rrt"]
+    apart += [row("ompl-rrt", "course-space-0", 3, 0.1, family="course", size=10,
+                  vehicle=vehicle) for vehicle in ("point", "spaceship")]
+    assert report.check_targets(apart) == []
+
+
+def test_targets_come_from_the_table():
+    assert TARGETS[-len(ISSUE_5_TARGETS):] == ISSUE_5_TARGETS
+    assert {type(target) for target in TARGETS} == {
+        SuccessWithin, SpeedVsReference, PlannerVsPlanner, PathLengthVsPlanner}
+    rows = [row(planner, "maze-20", seed, seconds, length=length)
+            for planner, seconds, length in (("rrt", 0.5, 10.0), ("prm", 0.2, 9.5),
+                                             ("rrtconnect", 0.3, 12.0))
+            for seed in (1, 2)]
+    rows.append(row("prm", "maze-20", 3, 0.9, solved=False))
+    own = (SuccessWithin("point", max_size=20, seconds=0.4),
+           PlannerVsPlanner("point", "maze", ("prm", "rrtconnect"), factor=0.5, strict=True),
+           PathLengthVsPlanner("point", "prm", factor=0.9),
+           SpeedVsReference("point", min_size=1, factor=1.0))  # no OMPL rows: left out
+    checks = report.check_targets(rows, targets=own)
+    assert [(c.target, c.met, c.detail) for c in checks] == [
+        ("point: prm solves 100% within 0.4 s up to 20x20", False,
+         "2/3 runs; short on maze-20 2/3"),
+        ("point: rrt solves 100% within 0.4 s up to 20x20", False,
+         "0/2 runs; short on maze-20 0/2"),
+        ("point: rrtconnect solves 100% within 0.4 s up to 20x20", True, "2/2 runs"),
+        ("point: prm or rrtconnect median planning time on maze problems below 0.5× our rrt's",
+         True, "prm 0.40×, rrtconnect 0.60×"),
+        ("point: prm paths at least 10% shorter than our rrt's (mean over problems of the "
+         "median-length ratio)", False, "mean ratio 0.95×; 10% shorter on 0/1 problems")]
 
 
 def test_planner_targets_compare_with_our_own_rrt():

@@ -9,6 +9,7 @@ import pytest
 
 from benchmarks.generator import PROBLEMS_DIR
 from benchmarks.shortest_path import shortest_lengths, shortest_path
+from planning_core.space_information import grid_space_information
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
@@ -145,7 +146,7 @@ def test_no_valid_answer_is_shorter(name, path: Path):
     optimum = shortest_path(problem).length
     for seed in range(3):
         planner = PLANNERS[name].load()
-        result = planner.solve(problem, Vehicle.POINT, StopCondition(time_limit=30),
+        result = planner.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                random.Random(seed))
         report = validate_output(problem, Vehicle.POINT,
                                  format_plan(result.trajectory, result.tree), strict=True)

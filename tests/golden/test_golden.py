@@ -29,7 +29,7 @@ def test_every_case_is_recorded():
     assert sorted(GOLDEN) == sorted(case_id(*case) for case in cases())
 
 
-@pytest.mark.parametrize("case", _params())
+@pytest.mark.parametrize("case", list(_params()))
 def test_output_matches_golden(case):
     vehicle, planner, problem, seed = case
     done = run_planner(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text())

@@ -6,6 +6,7 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
+from planning_core.space_information import grid_space_information
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
@@ -63,7 +64,7 @@ def solve_and_validate(planner, problem_text: str, vehicle: Vehicle, seed: int, 
     """Run ``planner.solve``; it must solve, and its output must validate."""
     problem = parse_problem(problem_text)
     stop = StopCondition(time_limit=120, max_iterations=ITERATION_CAP)
-    result = planner.solve(problem, vehicle, stop, random.Random(seed), params)
+    result = planner.solve(grid_space_information(problem, vehicle), stop, random.Random(seed), params)
     assert result.solved, (result.status, result.stats)
     output = format_plan(result.trajectory, result.tree)
     report = validate_output(problem, vehicle, output)

@@ -11,10 +11,10 @@ import random
 
 import pytest
 
-from planning_core.cell_distance import CellDistanceToGoal
 from planning_core.problem_text import parse_problem
-from planning_core.vehicles import Vehicle, spaceship
-from planning_core.world import GridWorld
+from planning_core.space_information import grid_space_information
+from planning_core.systems import spaceship
+from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rgrrt
 from tests.planners import ship_planner_testlib
 from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_50, SHIPS, ZIGZAG
@@ -25,7 +25,7 @@ def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,
     return ship_planner_testlib.solve_and_validate(rgrrt, problem_text, vehicle, seed, params)
 
 
-@pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)), dict(thrusts=(0.6,)),
+@pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)),
                                  dict(random_controls=-1), dict(goal_bias=1.5),
                                  dict(guided_share=-0.1), dict(goal_controls=-1),
                                  dict(goal_distance="manhattan")])
@@ -34,18 +34,22 @@ def test_bad_params_are_rejected(bad):
         rgrrt.RGRRTParams(**bad)
 
 
+def test_a_thrust_beyond_the_ships_is_rejected():
+    with pytest.raises(ValueError):
+        spaceship.SYSTEM.reachable_controls(8, (0.6,))
+
+
 @pytest.mark.parametrize("vehicle", SHIPS, ids=lambda v: v.value)
 def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
-    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
-                   else spaceship.THETA_RANGE)
+    theta_range = vehicle.system.theta_range
     params = rgrrt.RGRRTParams()
-    fixed = set(rgrrt.reachable_controls(params, theta_range))
+    fixed = set(vehicle.system.reachable_controls(params.angles, params.thrusts))
     assert len(fixed) == 1 + params.angles * len(params.thrusts)
     # A full turn is half-open; the left-only ship's half turn is closed, so
     # its set holds full braking (theta = pi), which the validator accepts.
-    assert all(0.0 <= theta < spaceship.THETA_RANGE for theta, _ in fixed)
+    assert all(0.0 <= theta < spaceship.FULL_TURN for theta, _ in fixed)
     assert max(theta for theta, _ in fixed) == (
-        spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
+        math.pi if vehicle is Vehicle.LEFT_SPACESHIP
         else theta_range * (params.angles - 1) / params.angles)
     result, _ = solve_and_validate(GAP_WALL, vehicle, 2, rgrrt.RGRRTParams(goal_controls=0))
     assert {tuple(row[4:]) for row in result.tree} <= fixed
@@ -55,7 +59,7 @@ def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
 
 def test_random_goal_controls_only_where_the_goal_is_within_a_step():
     params = rgrrt.RGRRTParams()
-    fixed = set(rgrrt.reachable_controls(params, spaceship.THETA_RANGE))
+    fixed = set(spaceship.SYSTEM.reachable_controls(params.angles, params.thrusts))
     problem = parse_problem(ZIGZAG)
     gx, gy = problem.goal
     random_edges = 0
@@ -94,7 +98,8 @@ def test_50x50_maze_both_ships(vehicle):
 
 def teststopping_point_key_ranks_a_braking_line_into_a_wall_last():
     problem = parse_problem(GAP_WALL)   # wall at column 3, gap in row 2; goal (6.5, 3.5)
-    key = rgrrt.stopping_point_key(CellDistanceToGoal(problem), GridWorld(problem))
+    si = grid_space_information(problem, "spaceship")
+    key = rgrrt.stopping_point_key(si.distance_along_free_space(), si)
     at_rest = key((2.5, 2.5, 0.0, 0.0))
     through_gap = key((2.5, 2.5, 1.0, 0.0))     # stops at (3.5, 2.5), in the gap
     into_wall = key((2.5, 0.5, 1.0, 0.0))       # stops inside the wall

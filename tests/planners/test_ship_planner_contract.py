@@ -14,6 +14,7 @@ import random
 
 import pytest
 
+from planning_core.space_information import grid_space_information
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle, spaceship
 from rrt_cli.planners import PLANNERS, kpiece, rgrrt
@@ -73,7 +74,7 @@ def test_same_seed_same_output_and_other_seed_differs(planner):
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
 def test_walled_in_goal_ends_at_the_iteration_limit(planner):
     problem = parse_problem(WALLED_GOAL)
-    result = planner.solve(problem, Vehicle.SPACESHIP, StopCondition(max_iterations=2000),
+    result = planner.solve(grid_space_information(problem, Vehicle.SPACESHIP), StopCondition(max_iterations=2000),
                            random.Random(0))
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.trajectory == ()
@@ -95,13 +96,14 @@ def test_start_within_tolerance_of_goal_is_one_line(planner):
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
 def test_point_vehicle_is_refused(planner):
     with pytest.raises(ValueError):
-        planner.solve(parse_problem(GAP_WALL), Vehicle.POINT, StopCondition(), random.Random(0))
+        planner.solve(grid_space_information(parse_problem(GAP_WALL), Vehicle.POINT),
+                      StopCondition(), random.Random(0))
 
 
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
 def test_registered_for_the_ships_and_cli_runs_it(planner):
     name = by_name(planner)
-    assert PLANNERS[name].vehicles == frozenset(SHIPS)
+    assert {v for v in Vehicle if PLANNERS[name].plans_for(v.system)} == set(SHIPS)
     text = COURSE_PROBLEMS[1].read_text()
     done = run_planner(["-grad", "-left", "-planner", name, "-seed", "3"], text)
     assert done.returncode == 0, done.stderr

@@ -7,6 +7,7 @@ import random
 import pytest
 
 from benchmarks.generator import maze, random_field
+from planning_core.space_information import grid_space_information
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
@@ -39,7 +40,7 @@ def test_smoothed_planner_paths_stay_valid_and_get_shorter(problem):
     shortened = 0
     for seed in range(6):
         for planner in (rrt, rrtconnect):
-            raw = planner.solve(problem, Vehicle.POINT, StopCondition(30),
+            raw = planner.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
                                 random.Random(seed)).trajectory
             smooth = smooth_path(GridWorld(problem), raw, random.Random(seed))
             assert_smoothed(problem, raw, smooth)
@@ -74,7 +75,7 @@ def test_corner_around_a_wall_is_cut_but_not_through_it():
 
 def test_same_rng_same_result():
     problem = PROBLEMS[-1]
-    raw = rrt.solve(problem, Vehicle.POINT, StopCondition(30), random.Random(1)).trajectory
+    raw = rrt.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(1)).trajectory
     world = GridWorld(problem)
     assert smooth_path(world, raw, random.Random(8)) == smooth_path(world, raw, random.Random(8))
 

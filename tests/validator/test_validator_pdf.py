@@ -15,8 +15,8 @@ from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
-from validator.render_pdf import (FAILURE_RGB, SOLUTION_RGB, page_layout, render_pdf,
-                                  solution_points)
+from validator.render_pdf import (FAILURE_RGB, SOLUTION_RGB, RenderOptions, page_layout,
+                                  render_pdf, solution_points)
 from validator_testlib import CORPUS, load_problem, run_validator
 
 SCALE = 2.0  # pixels per PDF point when rasterising
@@ -89,6 +89,39 @@ def test_first_failure_is_marked():
     assert near_colour(image, page_layout(problem).to_page(*failure.where), FAILURE_RGB)
     assert "Putative solution trajectory has problems." in text
     assert "Trajectory collides with an obstacle!" in text
+
+
+def page_lines(pdf: bytes) -> list[str]:
+    return rasterise(pdf)[1].splitlines()
+
+
+def test_title_counts_and_captions():
+    problem = load_problem("corner.sw")
+    text = (CORPUS / "outputs/point/valid-corner-cut-warning.out").read_text()
+    report = validate_output(problem, Vehicle.POINT, text)
+    out = io.BytesIO()
+    summary = render_pdf(out, problem, Vehicle.POINT, report, report.verdict, ["a note"],
+                         "corner", RenderOptions(max_tree_edges_drawn=0))
+    assert (summary.tree_edges_drawn, summary.tree_edges_total) == (0, 1)
+    lines = page_lines(out.getvalue())
+    assert lines[:3] == ["Solution trajectory appears valid.",
+                         "corner: 4 x 3 map, start (1, 0.99), goal (3, 2.95) vehicle: point",
+                         "2 trajectory lines, 1 tree edges (first 0 drawn), path length 2.828"]
+    assert lines[3] == "a note" and lines[4].startswith("Warning: segment from line 2 ")
+    assert lines[5].startswith("red: solution")
+    # With -strict the cut is the first failure: it replaces the warning, the heading says so.
+    pdf, _ = render(problem, Vehicle.POINT, text, strict=True)
+    lines = page_lines(pdf)
+    assert lines[1].endswith("vehicle: point -strict")
+    assert lines[3] == "First failure (check 6, line 2): Trajectory collides with an obstacle!"
+    # Nothing to validate: the verdict, the heading and the notes, no counts line.
+    out = io.BytesIO()
+    summary = render_pdf(out, problem, Vehicle.SPACESHIP, None, "Planner timed out.",
+                         ["timed out after 5 s"])
+    assert (summary.tree_edges_drawn, summary.tree_edges_total) == (0, 0)
+    assert page_lines(out.getvalue())[1:3] == [
+        "problem: 4 x 3 map, start (1, 0.99), goal (3, 2.95) vehicle: spaceship",
+        "timed out after 5 s"]
 
 
 def big_problem(rng, size=500):

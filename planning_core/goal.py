@@ -1,0 +1,38 @@
+"""The goal region: a point and the tolerance around it, defined once.
+
+SPEC 2: a state reaches the goal when its position is within 0.1 of the goal
+point. The validator accepts ``distance <= 0.1`` (:meth:`GoalRegion.accepts`);
+planners stop only at ``0.1 * (1 - 1e-9)`` (:meth:`GoalRegion.reached`), so that
+no checker's rounding puts one of their answers at 0.1000000001.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+GOAL_TOLERANCE = 0.1
+PLANNER_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class GoalRegion:
+    point: tuple[float, float]
+    """The goal position (x, y)."""
+    tolerance: float = GOAL_TOLERANCE
+    """Largest accepted distance of a state's position from ``point``."""
+
+    def distance(self, state: Sequence[float]) -> float:
+        return math.hypot(state[0] - self.point[0], state[1] - self.point[1])
+
+    def accepts(self, state: Sequence[float]) -> bool:
+        """The validator's test: within the tolerance."""
+        return self.distance(state) <= self.tolerance
+
+    def reached(self, state: Sequence[float]) -> bool:
+        """The planners' test, a hair inside the tolerance (squared, no sqrt)."""
+        gx, gy = self.point
+        tolerance = self.tolerance
+        return ((state[0] - gx) ** 2 + (state[1] - gy) ** 2
+                <= tolerance * tolerance * (1 - PLANNER_MARGIN))

@@ -1,0 +1,28 @@
+"""The rows of the plan format (SPEC 2), made from a planner's states and controls.
+
+The one place that knows the layout: a geometric system prints its path's states
+and its edges as ``from + to``; a kinodynamic one prints each path state with the
+control applied from it (the last control leads into the goal, and the state it
+reaches is not printed) and its edges as ``parent state + control``.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+Row = tuple[float, ...]
+
+
+def trajectory_rows(system, path: Sequence[Row], path_controls: Sequence[Row]) -> tuple[Row, ...]:
+    if not system.kinodynamic:
+        return tuple(path)
+    if len(path) == 1:
+        # Start already at the goal: one line, the control that keeps it there.
+        return (path[0] + system.rest_control,)
+    return tuple(state + control for state, control in zip(path, path_controls))
+
+
+def tree_rows(system, edges: Iterable[tuple]) -> tuple[Row, ...]:
+    if system.kinodynamic:
+        return tuple(parent + control for parent, control, _ in edges)
+    return tuple(parent + child for parent, _, child in edges)

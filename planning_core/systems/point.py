@@ -1,0 +1,30 @@
+"""The point vehicle of SPEC 2: state <x, y>, moving along straight segments.
+
+A geometric system: no controls; a motion is the segment between two states,
+checked exactly against the world.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+State = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class PointVehicle:
+    name: str = "point"
+    """The name the registry and the validator's report use."""
+
+    kinodynamic: ClassVar[bool] = False
+    state_names: ClassVar[tuple[str, ...]] = ("x", "y")
+    control_names: ClassVar[tuple[str, ...]] = ()
+    position_indices: ClassVar[tuple[int, ...]] = (0, 1)
+    velocity_indices: ClassVar[tuple[int, ...]] = ()
+
+    def start_state(self, x: float, y: float) -> State:
+        return (x, y)
+
+
+SYSTEM = PointVehicle()

@@ -1,0 +1,130 @@
+"""The spaceship of SPEC section 2: state <x, y, dx, dy>, control <theta, s>.
+
+A control is held for one timestep, integrated in ``SLICES`` slices of
+``1 / SLICES``; theta is measured from the direction of motion. The planner and
+the validator both integrate through :meth:`Spaceship.propagate_while`, so their
+numbers agree bit for bit. The left-only ship (``left_spaceship``) is this
+system with half the theta range.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+from typing import Callable, ClassVar
+
+SLICES = 20
+DT = 1.0 / SLICES
+MAX_THRUST = 0.5
+FULL_TURN = 2.0 * math.pi
+
+State = tuple[float, float, float, float]
+Control = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Spaceship:
+    """A kinodynamic system: a control held for one step of ``SLICES`` slices."""
+
+    name: str = "spaceship"
+    """The name the registry and the validator's report use."""
+    theta_range: float = FULL_TURN
+    """Random thetas are drawn from ``[0, theta_range)``; below a full turn, a
+    printed theta (mod 2 pi) must lie in the closed ``[0, theta_range]``."""
+    max_thrust: float = MAX_THRUST
+    """Thrust ``s`` is in ``[0, max_thrust]``."""
+
+    kinodynamic: ClassVar[bool] = True
+    state_names: ClassVar[tuple[str, ...]] = ("x", "y", "dx", "dy")
+    control_names: ClassVar[tuple[str, ...]] = ("theta", "s")
+    position_indices: ClassVar[tuple[int, ...]] = (0, 1)
+    velocity_indices: ClassVar[tuple[int, ...]] = (2, 3)
+    slices: ClassVar[int] = SLICES
+    rest_control: ClassVar[Control] = (0.0, 0.0)
+
+    @property
+    def full_turn(self) -> bool:
+        return self.theta_range >= FULL_TURN
+
+    def start_state(self, x: float, y: float) -> State:
+        """SPEC 2: the ship starts at rest."""
+        return (x, y, 0.0, 0.0)
+
+    def sample_control(self, rng: random.Random) -> Control:
+        """Theta uniform in ``[0, theta_range)``, then thrust uniform in ``[0, s_max)``."""
+        return (rng.random() * self.theta_range, rng.random() * self.max_thrust)
+
+    def control_violation(self, control: Control) -> str | None:
+        """Why a printed control is out of bounds (SPEC 3), or None. (A ship with
+        less than a full turn is the left-only one, theta in ``[0, pi]``.)"""
+        theta, thrust = control
+        if not 0.0 <= thrust <= self.max_thrust:
+            return f"thrust s = {thrust:.6g} is outside [0, {self.max_thrust}]"
+        if not self.full_turn and not theta % FULL_TURN <= self.theta_range:
+            return (f"theta = {theta:.6g} (mod 2 pi: {theta % FULL_TURN:.6g}) is outside "
+                    f"[0, pi]: the left-only spaceship cannot thrust to the right")
+        return None
+
+    # -- what RG-RRT asks of a kinodynamic system ------------------------------------
+    def reachable_controls(self, angles: int, thrusts: tuple[float, ...]) -> list[Control]:
+        """A fixed reachable set: coasting, then every thrust at ``angles`` thetas
+        evenly spaced over the range. A full turn's ``[0, 2 pi)`` holds every
+        direction once; a narrower range is closed at both ends (the left-only
+        ship's ``[0, pi]``: straight ahead and full braking)."""
+        if not all(0.0 < thrust <= self.max_thrust for thrust in thrusts):
+            raise ValueError(f"thrusts must be in (0, {self.max_thrust}]")
+        controls = [(0.0, 0.0)]
+        spacing = self.theta_range / (angles if self.full_turn or angles == 1 else angles - 1)
+        for k in range(angles):
+            theta = min(spacing * k, self.theta_range)
+            controls.extend((theta, thrust) for thrust in thrusts)
+        return controls
+
+    def step_reach(self, state: State) -> float:
+        """How far the position can get in one step, at most (speed plus thrust)."""
+        return math.hypot(state[2], state[3]) + self.max_thrust
+
+    def stopping_point(self, state: State) -> tuple[float, float]:
+        """Where full braking would bring the ship to rest: ``v**2 / (2 a)`` ahead
+        along its velocity."""
+        x, y, dx, dy = state
+        ahead = math.hypot(dx, dy) * (1.0 / (2.0 * self.max_thrust))
+        return x + dx * ahead, y + dy * ahead
+
+    def propagate_while(self, state: State, control: Control,
+                        position_free: Callable[[float, float], bool] | None = None,
+                        slices_out: list[State] | None = None) -> State | None:
+        """Apply ``control`` from ``state`` for one timestep, slice by slice.
+
+        With ``position_free``, returns None as soon as a slice's position is not
+        free. With ``slices_out``, appends the state after every slice.
+        """
+        x, y, dx, dy = state
+        theta, thrust = control
+        step = DT * thrust
+        atan2, cos, sin = math.atan2, math.cos, math.sin  # locals: this loop is the hot path
+        for _ in range(SLICES):
+            a = atan2(dy, dx) + theta
+            dx = dx + step * cos(a)
+            dy = dy + step * sin(a)
+            x = x + DT * dx
+            y = y + DT * dy
+            if position_free is not None and not position_free(x, y):
+                return None
+            if slices_out is not None:
+                slices_out.append((x, y, dx, dy))
+        return (x, y, dx, dy)
+
+    def propagate(self, state: State, control: Control) -> State:
+        """The state one timestep later (no validity test)."""
+        return self.propagate_while(state, control)  # type: ignore[return-value]
+
+    def slice_states(self, state: State, control: Control) -> list[State]:
+        """The states after each of the ``SLICES`` slices, last one included."""
+        out: list[State] = []
+        self.propagate_while(state, control, slices_out=out)
+        return out
+
+
+SYSTEM = Spaceship()

@@ -1,0 +1,109 @@
+"""The continuous world of SPEC 5.1: a closed box and closed obstacles.
+
+A body (a placed :class:`ConvexPolygon`) or an arm link (a :class:`Segment`) is
+free when it lies inside the closed world box (touching the border is fine,
+crossing it is not) and shares no point with any closed obstacle (touching one
+is a collision). Systems without a workspace (the pendulum) use ``box=None``:
+then only the obstacles count, and there are usually none.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Optional, Union
+
+from planning_core.worlds.shapes import (
+    BBox,
+    ConvexPolygon,
+    Disc,
+    Rect,
+    Segment,
+    Shape,
+    inside_box,
+    pair_test,
+    point_in,
+)
+
+Obstacle = Union[Rect, Disc, ConvexPolygon]
+OUTSIDE_BOX = -1
+
+
+@dataclass(frozen=True)
+class ContinuousWorld:
+    """The box (or None) and the obstacles, in the order the problem lists them."""
+
+    box: Optional[Rect]
+    obstacles: tuple[Obstacle, ...] = ()
+    _bboxes: tuple[BBox, ...] = field(init=False, repr=False, compare=False)
+    _tests: dict = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.box is not None and not isinstance(self.box, Rect):
+            raise TypeError(f"world box must be a Rect or None, got {type(self.box).__name__}")
+        obstacles = tuple(self.obstacles)
+        for i, obstacle in enumerate(obstacles):
+            if not isinstance(obstacle, (Rect, Disc, ConvexPolygon)):
+                raise TypeError(f"obstacle {i}: expected Rect, Disc or ConvexPolygon, "
+                                f"got {type(obstacle).__name__}")
+        object.__setattr__(self, "obstacles", obstacles)
+        object.__setattr__(self, "_bboxes", tuple(o.bbox for o in obstacles))
+        object.__setattr__(self, "_tests", {})
+
+    def _tests_for(self, kind: type) -> tuple[Callable[[Shape, Obstacle], bool], ...]:
+        """Per obstacle, the exact test against a query of type ``kind`` (cached)."""
+        tests = self._tests.get(kind)
+        if tests is None:
+            tests = tuple(pair_test(kind, type(o)) for o in self.obstacles)
+            self._tests[kind] = tests
+        return tests
+
+    def first_obstacle(self, shape: Shape) -> Optional[int]:
+        """``None`` when ``shape`` is free, ``-1`` when it is not inside the closed box,
+        else the lowest index (in ``obstacles``) of an obstacle it touches or overlaps.
+
+        A body placed at a NaN or infinite state, or a link with a NaN end, counts
+        as outside (-1), with or without a box: its bounding box holds a NaN.
+        """
+        x0, y0, x1, y1 = shape.bbox
+        if not (x0 <= x1 and y0 <= y1):
+            return OUTSIDE_BOX
+        box = self.box
+        if box is not None and not (box.x0 <= x0 and x1 <= box.x1
+                                    and box.y0 <= y0 and y1 <= box.y1):
+            return OUTSIDE_BOX
+        if not self.obstacles:
+            return None
+        tests = self._tests_for(type(shape))
+        obstacles = self.obstacles
+        for i, (ox0, oy0, ox1, oy1) in enumerate(self._bboxes):
+            if ox0 <= x1 and x0 <= ox1 and oy0 <= y1 and y0 <= oy1 \
+                    and tests[i](shape, obstacles[i]):
+                return i
+        return None
+
+    def polygon_free(self, polygon: ConvexPolygon) -> bool:
+        """Inside the closed box and disjoint from every closed obstacle."""
+        return self.first_obstacle(polygon) is None
+
+    def segment_free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
+        """The closed segment (an arm link) is in the box and touches no obstacle.
+
+        A NaN end is never free."""
+        return self.first_obstacle(Segment._trusted(x0, y0, x1, y1)) is None
+
+    def point_free(self, x: float, y: float) -> bool:
+        """The point is in the closed box and in no closed obstacle (NaN is never free)."""
+        if not (x == x and y == y):
+            return False
+        box = self.box
+        if box is not None and not (box.x0 <= x <= box.x1 and box.y0 <= y <= box.y1):
+            return False
+        for (ox0, oy0, ox1, oy1), obstacle in zip(self._bboxes, self.obstacles):
+            if ox0 <= x <= ox1 and oy0 <= y <= oy1 and point_in(obstacle, x, y):
+                return False
+        return True
+
+    def contains(self, shape: Shape) -> bool:
+        """``shape`` is inside the closed box (always True without a box)."""
+        return self.box is None or inside_box(shape, self.box)
+

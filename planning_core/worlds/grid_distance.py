@@ -1,0 +1,105 @@
+"""Distance to the goal through the free cells: a heuristic for guided planners.
+
+On a maze the straight-line distance to the goal says little about how far the
+goal really is. :class:`CellDistanceToGoal` runs Dijkstra once over the free
+cells, from the goal's cell outward (8 neighbours; a diagonal step only when
+both cells beside it are free, so no step cuts a blocked corner), and answers
+for any position in a free cell:
+
+* in the goal's cell: the straight-line distance to the goal;
+* elsewhere: the cell's distance (between cell centres, along the cheapest
+  chain) minus the position's progress, inside its cell, toward the next cell of
+  that chain -- so the value falls smoothly as a vehicle moves along the chain.
+
+It is a heuristic, not a bound: it neither under- nor over-estimates reliably
+(a spaceship can hop a thin wall between slices, and the chain of centres is
+not the shortest curve). A position in a blocked cell, outside the map, or in a
+free region cut off from the goal gets ``unreachable`` (a large finite value,
+so sums and comparisons stay plain floats).
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+from planning_core.problem import Problem
+
+_DIAGONAL = math.sqrt(2.0)
+
+
+class CellDistanceToGoal:
+    def __init__(self, problem: Problem, unreachable: float = 1e12):
+        width, height, blocked = problem.width, problem.height, problem.blocked
+        self.width, self.height = width, height
+        self.goal = problem.goal
+        self.unreachable = unreachable
+        gx, gy = problem.goal
+        self.goal_cell = int(gy) * width + int(gx)
+        inf = math.inf
+        distance = [inf] * (width * height)
+        # Unit vector from each cell's centre toward the next cell on its chain.
+        self._toward_x = [0.0] * (width * height)
+        self._toward_y = [0.0] * (width * height)
+        if not blocked[self.goal_cell]:
+            distance[self.goal_cell] = 0.0
+            queue = [(0.0, self.goal_cell)]
+            steps = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
+                     (1, 1, _DIAGONAL), (1, -1, _DIAGONAL), (-1, 1, _DIAGONAL),
+                     (-1, -1, _DIAGONAL)]
+            while queue:
+                d, index = heapq.heappop(queue)
+                if d > distance[index]:
+                    continue
+                row, col = divmod(index, width)
+                for dc, dr, cost in steps:
+                    c, r = col + dc, row + dr
+                    if not (0 <= c < width and 0 <= r < height):
+                        continue
+                    k = r * width + c
+                    if blocked[k]:
+                        continue
+                    if dc and dr and (blocked[row * width + c] or blocked[r * width + col]):
+                        continue
+                    if d + cost < distance[k]:
+                        distance[k] = d + cost
+                        # k's chain goes back through index: from k toward (col, row).
+                        self._toward_x[k] = -dc / cost
+                        self._toward_y[k] = -dr / cost
+                        heapq.heappush(queue, (d + cost, k))
+        self.cell_distance = distance
+
+    def __call__(self, x: float, y: float) -> float:
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return self.unreachable
+        index = int(y) * self.width + int(x)
+        if index == self.goal_cell:
+            return math.hypot(x - self.goal[0], y - self.goal[1])
+        d = self.cell_distance[index]
+        if d == math.inf:
+            return self.unreachable
+        # Progress inside the cell toward the next one, from the cell's centre.
+        return d - ((x - int(x) - 0.5) * self._toward_x[index]
+                    + (y - int(y) - 0.5) * self._toward_y[index])
+
+    def chain_from(self, x: float, y: float) -> list[tuple[int, int]] | None:
+        """The cells (column, row) of the cheapest chain from (x, y)'s cell to the goal's.
+
+        Consecutive cells share a side, or a corner with both side cells free, so
+        the polyline through their centres stays in free cells. None when (x, y)
+        has no chain (blocked, outside, or cut off from the goal).
+        """
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return None
+        index = int(y) * self.width + int(x)
+        if self.cell_distance[index] == math.inf:
+            return None
+        chain = []
+        while True:
+            row, col = divmod(index, self.width)
+            chain.append((col, row))
+            if index == self.goal_cell:
+                return chain
+            toward_x, toward_y = self._toward_x[index], self._toward_y[index]
+            index = ((row + (toward_y > 0) - (toward_y < 0)) * self.width
+                     + col + (toward_x > 0) - (toward_x < 0))

@@ -1,0 +1,56 @@
+"""A tree of motions stored as parallel lists, and what a result needs from it."""
+
+from __future__ import annotations
+
+import time
+
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus
+
+
+class MotionTree:
+    """States, each node's parent (-1 for the root) and the control that reached it."""
+
+    def __init__(self, root: tuple[float, ...]):
+        self.states: list[tuple[float, ...]] = [root]
+        self.parents: list[int] = [-1]
+        self.controls: list[tuple[float, ...] | None] = [None]
+
+    def __len__(self) -> int:
+        return len(self.states)
+
+    def add(self, parent: int, state: tuple[float, ...], control=None) -> int:
+        self.states.append(state)
+        self.parents.append(parent)
+        self.controls.append(control)
+        return len(self.states) - 1
+
+    def path_to(self, node: int) -> list[int]:
+        """The nodes from the root to ``node``."""
+        path = []
+        parents = self.parents
+        while node != -1:
+            path.append(node)
+            node = parents[node]
+        path.reverse()
+        return path
+
+    def edges(self, toward_root: bool = False) -> list[tuple]:
+        """``(parent state, control, child state)`` per non-root node; with
+        ``toward_root``, ``(child, control, parent)`` (a tree grown from the goal)."""
+        states, parents, controls = self.states, self.parents, self.controls
+        if toward_root:
+            return [(states[k], controls[k], states[parents[k]]) for k in range(1, len(states))]
+        return [(states[parents[k]], controls[k], states[k]) for k in range(1, len(states))]
+
+    def result(self, system, status: PlanStatus, goal_node: int | None, iterations: int,
+               began: float, message: str = "") -> PlanResult:
+        """The result: the path to ``goal_node`` (none when it is None) and every edge."""
+        path: tuple = ()
+        path_controls: tuple = ()
+        if goal_node is not None:
+            nodes = self.path_to(goal_node)
+            path = tuple(self.states[k] for k in nodes)
+            path_controls = tuple(self.controls[k] for k in nodes[1:])
+        stats = PlanStats(iterations, len(self.states), time.perf_counter() - began)
+        return PlanResult(status, system, path, path_controls, tuple(self.edges()), stats,
+                          message)
