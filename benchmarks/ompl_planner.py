@@ -26,9 +26,8 @@ except ModuleNotFoundError:  # run as a script from a checkout that is not insta
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from benchmarks import ompl_adapters
 from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    vehicle_from_flags)
+                                    read_problem_from_stdin, vehicle_from_flags)
 from planning_core.plan_text import format_plan
-from planning_core.problem_text import ProblemFormatError, parse_problem
 
 EXIT_SOLVED = 0
 EXIT_USAGE = 2
@@ -61,10 +60,8 @@ def main(argv: list[str] | None = None) -> int:
         sys.stderr.write(f"ompl_planner: error: planner {args.planner!r} does not support "
                          f"the {vehicle.value} vehicle\n")
         return EXIT_USAGE
-    try:
-        problem = parse_problem(sys.stdin.buffer.read().decode("utf-8", errors="replace"))
-    except ProblemFormatError as error:
-        sys.stderr.write(f"ompl_planner: bad problem: {error}\n")
+    problem = read_problem_from_stdin("ompl_planner")
+    if problem is None:
         return EXIT_USAGE
     seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 31)
     try:

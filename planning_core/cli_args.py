@@ -8,6 +8,8 @@ import argparse
 import math
 import sys
 
+from planning_core.problem import Problem
+from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
 
 EXIT_USAGE = 2
@@ -51,3 +53,16 @@ def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> 
     if args.left:
         return Vehicle.LEFT_SPACESHIP
     return Vehicle.SPACESHIP if args.grad else Vehicle.POINT
+
+
+def read_problem_from_stdin(prog: str) -> Problem | None:
+    """The ``.sw`` problem on stdin; None after one ``PROG: bad problem: ...`` line
+    on stderr (the caller exits 2). A terminal on stdin gets a one-line notice."""
+    if sys.stdin.isatty():
+        sys.stderr.write(f"{prog}: reading the problem from stdin (end it with Ctrl-D)\n")
+    raw = sys.stdin.buffer.read()
+    try:
+        return parse_problem(raw.decode("utf-8", errors="replace"))
+    except ProblemFormatError as error:
+        sys.stderr.write(f"{prog}: bad problem: {error}\n")
+        return None

@@ -26,3 +26,11 @@ def tree_rows(system, edges: Iterable[tuple]) -> tuple[Row, ...]:
     if system.kinodynamic:
         return tuple(parent + control for parent, control, _ in edges)
     return tuple(parent + child for parent, _, child in edges)
+
+
+def row_widths(system) -> tuple[int, int]:
+    """Numbers per trajectory line and per tree line."""
+    states = len(system.state_names)
+    if system.kinodynamic:
+        return states + len(system.control_names), states + len(system.control_names)
+    return states, 2 * states

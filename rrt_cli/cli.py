@@ -12,9 +12,8 @@ import random
 import sys
 
 from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    vehicle_from_flags)
+                                    read_problem_from_stdin, vehicle_from_flags)
 from planning_core.plan_text import format_plan
-from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.space_information import grid_space_information
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import StopCondition
@@ -80,11 +79,8 @@ def main(argv: list[str] | None = None) -> int:
                          f"{vehicle.value} vehicle\n")
         return EXIT_USAGE
 
-    raw = sys.stdin.buffer.read()
-    try:
-        problem = parse_problem(raw.decode("utf-8", errors="replace"))
-    except ProblemFormatError as error:
-        sys.stderr.write(f"rrt_cli: bad problem: {error}\n")
+    problem = read_problem_from_stdin("rrt_cli")
+    if problem is None:
         return EXIT_USAGE
 
     seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)

@@ -17,12 +17,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from planning_core.goal import GOAL_TOLERANCE
 from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
+from planning_core.plan_rows import row_widths
 from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
+from planning_core.space_information import SpaceInformation, grid_space_information
 from planning_core.vehicles import Vehicle
-from planning_core.vehicles import spaceship
-from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
+from planning_core.worlds.grid import SAMPLE_STEP
 
 # The SPEC 3 messages, verbatim.
 PARSE_ERROR = "Error parsing planner output!"
@@ -39,7 +41,6 @@ VALID_VERDICT = "Solution trajectory appears valid."
 INVALID_VERDICT = "Putative solution trajectory has problems."
 
 START_TOLERANCE = 0.001  # in each of x and y (and dx, dy for the spaceship)
-GOAL_TOLERANCE = 0.1     # Euclidean distance to the goal point
 STATE_TOLERANCE = 0.01   # check 7, in each of x, y, dx, dy
 
 CHECK_NAMES = ("parse", "nonempty", "bounds", "start", "goal", "collision", "dynamics")
@@ -99,7 +100,7 @@ class CornerCut:
 
 @dataclass(frozen=True)
 class ValidationReport:
-    vehicle: Vehicle
+    system: object             # what was checked (planning_core.systems)
     strict: bool
     checks: list[CheckResult]
     warnings: list[str] = field(default_factory=list)
@@ -110,8 +111,13 @@ class ValidationReport:
     final_state: tuple[float, float, float, float] | None = None
 
     @property
+    def vehicle(self) -> Vehicle:
+        """The course's name for the system checked."""
+        return Vehicle(self.system.name)
+
+    @property
     def checks_expected(self) -> int:
-        return 7 if self.vehicle.is_spaceship else 6
+        return 7 if self.system.kinodynamic else 6
 
     @property
     def valid(self) -> bool:
@@ -177,13 +183,13 @@ def _same_signs(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
     return all(math.copysign(1.0, u) == math.copysign(1.0, v) for u, v in zip(a, b))
 
 
-def _vehicle_hint(error: PlanParseError, vehicle: Vehicle) -> str:
-    """Name the likely cause when the numbers per line fit the other vehicle."""
+def _other_answer_hint(error: PlanParseError, system) -> str:
+    """Name the likely cause when the numbers per line fit the other kind of system."""
     found = getattr(error, "found", None)
-    if vehicle.is_spaceship and found in (2, 4):
+    if system.kinodynamic and found in (2, 4):
         return (" (a point-vehicle answer? the output is being checked for the "
-                f"{vehicle.value} vehicle, 6 numbers a line)")
-    if not vehicle.is_spaceship and found == 6:
+                f"{system.name} vehicle, 6 numbers a line)")
+    if not system.kinodynamic and found == 6:
         return " (a spaceship answer? check it with -grad)"
     return ""
 
@@ -191,12 +197,13 @@ def _vehicle_hint(error: PlanParseError, vehicle: Vehicle) -> str:
 class _Validation:
     """One run of the checks; each ``check_*`` method returns a result or raises _Failed."""
 
-    def __init__(self, problem: Problem, vehicle: Vehicle, strict: bool, limits: Limits):
-        self.problem = problem
-        self.vehicle = vehicle
+    def __init__(self, si: SpaceInformation, strict: bool, limits: Limits):
+        self.si = si
+        self.system = si.system
+        self.problem = si.world.problem
         self.strict = strict
         self.limits = limits
-        self.world = GridWorld(problem)
+        self.world = si.world
         self.plan: PlanArrays | None = None
         self.warnings: list[str] = []
         self.corner_cuts: list[CornerCut] = []
@@ -217,8 +224,7 @@ class _Validation:
 
     # 1
     def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
-        fields = self.vehicle.line_fields
-        tree_fields = 6 if self.vehicle.is_spaceship else 4
+        fields, tree_fields = row_widths(self.system)
         if output_cap is not None:
             line = text.count("\n") + 1
             raise self.fail(1, PARSE_ERROR, f"line {line}: the planner wrote more than "
@@ -231,7 +237,7 @@ class _Validation:
         except PlanParseError as error:
             detail = f"line {error.line}: {error.message}"
             if isinstance(error, PlanRowError):
-                detail += _vehicle_hint(error, self.vehicle)
+                detail += _other_answer_hint(error, self.system)
             raise self.fail(1, PARSE_ERROR, detail, error.line) from None
         if self.plan.trailing_line is not None:
             self.warnings.append(f"line {self.plan.trailing_line}: text after the tree "
@@ -250,68 +256,75 @@ class _Validation:
     # 3
     def check_bounds(self) -> CheckResult:
         width, height = self.problem.width, self.problem.height
-        left_only = self.vehicle is Vehicle.LEFT_SPACESHIP
-        two_pi = 2.0 * math.pi
+        system, printable = self.system, self.si.printable
+        n = len(system.state_names)
         for index, row in enumerate(self.plan.trajectory_rows()):
             x, y = row[0], row[1]
-            if not (0.0 < x < width and 0.0 < y < height):
+            if not printable(x, y):
                 raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: point "
                                 f"{_point(x, y)} is not strictly inside the map (0, {width}) "
                                 f"x (0, {height})", self.line_of(index), (x, y))
-            if len(row) == 6:
-                theta, thrust = row[4], row[5]
-                if not 0.0 <= thrust <= spaceship.MAX_THRUST:
-                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: thrust "
-                                    f"s = {_num(thrust)} is outside [0, {spaceship.MAX_THRUST}]",
+            if system.kinodynamic:
+                violation = system.control_violation(row[n:])
+                if violation is not None:
+                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: {violation}",
                                     self.line_of(index), (x, y))
-                if left_only and not theta % two_pi <= math.pi:
-                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: theta = "
-                                    f"{_num(theta)} (mod 2 pi: {_num(theta % two_pi)}) is "
-                                    "outside [0, pi]: the left-only spaceship cannot thrust "
-                                    "to the right", self.line_of(index), (x, y))
         return self.passed(3)
 
     # 4
     def check_start(self) -> CheckResult:
         row = self.plan.trajectory_row(0)
-        sx, sy = self.problem.start
+        start, names = self.si.start, self.system.state_names
         line = self.line_of(0)
+        sx, sy = start[0], start[1]
         if abs(row[0] - sx) > START_TOLERANCE or abs(row[1] - sy) > START_TOLERANCE:
             raise self.fail(4, NOT_AT_START, f"line {line}: first point {_point(row[0], row[1])}"
                             f", start {_point(sx, sy)} (tolerance {START_TOLERANCE} in x and y)",
                             line, (row[0], row[1]))
-        if len(row) == 6 and (abs(row[2]) > START_TOLERANCE or abs(row[3]) > START_TOLERANCE):
+        rest = range(2, len(start))
+        if any(abs(row[k] - start[k]) > START_TOLERANCE for k in rest):
             raise self.fail(4, NOT_AT_START, f"line {line}: first velocity "
-                            f"{_point(row[2], row[3])} is not at rest (tolerance "
-                            f"{START_TOLERANCE} in dx and dy)", line, (row[0], row[1]))
+                            f"{_point(*(row[k] for k in rest))} is not at rest (tolerance "
+                            f"{START_TOLERANCE} in {' and '.join(names[2:])})", line,
+                            (row[0], row[1]))
         return self.passed(4)
+
+    def _slices_or_fail(self, number: int, message: str, row, line: int) -> list:
+        """The slice states of a kinodynamic row's control; a failure of check
+        ``number`` at the first slice that is not valid."""
+        system, problem = self.system, self.problem
+        n = len(system.state_names)
+        state, control = row[:n], row[n:]
+        slices = system.slice_states(state, control)
+        for k, sliced in enumerate(slices):
+            if not self.si.is_valid(sliced):
+                x, y = sliced[0], sliced[1]
+                raise self.fail(number, message, f"line {line}: control {_angle(*control)} from "
+                                f"state {_angle(*state)}: slice {k + 1} of {system.slices} at "
+                                f"{_place(problem, x, y)}", line, (x, y))
+        return slices
 
     # 5
     def check_goal(self) -> CheckResult:
-        plan = self.plan
+        plan, goal = self.plan, self.si.goal
         last = plan.trajectory_count - 1
         row = plan.trajectory_row(last)
         line = self.line_of(last)
-        gx, gy = self.problem.goal
-        if len(row) == 6:
-            slices = spaceship.slice_states(row[:4], row[4:])
-            for k, (x, y, _, _) in enumerate(slices):
-                if not self.world.point_free(x, y):
-                    raise self.fail(5, LAST_EDGE_COLLISION, f"line {line}: control "
-                                    f"{_angle(*row[4:])} from state {_angle(*row[:4])}: "
-                                    f"slice {k + 1} of {spaceship.SLICES} at "
-                                    f"{_place(self.problem, x, y)}", line, (x, y))
+        gx, gy = goal.point
+        if self.system.kinodynamic:
+            slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
             self.last_slices = slices
             self.final_state = slices[-1]
             x, y = slices[-1][0], slices[-1][1]
-            what = f"the last line's control {_angle(*row[4:])} ends at {_point(x, y)}"
+            control = row[len(self.system.state_names):]
+            what = f"the last line's control {_angle(*control)} ends at {_point(x, y)}"
         else:
             x, y = row
             what = f"the last point {_point(x, y)}"
-        distance = math.hypot(x - gx, y - gy)
-        if not distance <= GOAL_TOLERANCE:
+        distance = goal.distance((x, y))
+        if not distance <= goal.tolerance:
             raise self.fail(5, NOT_AT_GOAL, f"line {line}: {what}, {_num(distance)} from the "
-                            f"goal {_point(gx, gy)} (at most {GOAL_TOLERANCE})", line, (x, y))
+                            f"goal {_point(gx, gy)} (at most {goal.tolerance})", line, (x, y))
         return self.passed(5, f"ends {_num(distance)} from the goal")
 
     # 6, point vehicle
@@ -360,51 +373,48 @@ class _Validation:
         return self.passed(6, f"{n - 1} segments"
                               + (f", {cut_count} cutting a corner" if cut_count else ""))
 
-    # 6 and 7, spaceship: one integration per line serves both checks.
-    def check_spaceship_motion(self) -> tuple[CheckResult, CheckResult]:
-        plan, world, problem = self.plan, self.world, self.problem
-        point_free = world.point_free
-        slice_states = spaceship.slice_states
-        n = plan.trajectory_count
+    def _motion(self, index: int, row, line: int) -> tuple[tuple, float]:
+        """A kinodynamic line's end state and the length of its flown curve; fails
+        check 6 at its state or first slice that is not valid."""
+        x, y = row[0], row[1]
+        if not self.si.is_valid(row):
+            raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
+                            f"{_place(self.problem, x, y)}", line, (x, y))
+        last = index == self.plan.trajectory_count - 1
+        slices = (self.last_slices if last and self.last_slices
+                  else self._slices_or_fail(6, SPACESHIP_COLLISION, row, line))
+        length = 0.0
+        for sliced in slices:
+            sx, sy = sliced[0], sliced[1]
+            length += math.hypot(sx - x, sy - y)
+            x, y = sx, sy
+        return slices[-1], length
+
+    # 6 and 7, kinodynamic systems: one integration per line serves both checks.
+    def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
+        plan, names = self.plan, self.system.state_names
+        n, dims = plan.trajectory_count, len(names)
         length = 0.0
         mismatch: _Failed | None = None
         previous_row: tuple[float, ...] | None = None
-        previous_end: tuple[float, ...] = ()
-        previous_length = 0.0
+        previous = ((), 0.0)
         for index, row in enumerate(plan.trajectory_rows()):
             line = self.line_of(index)
-            if row == previous_row and _same_signs(row, previous_row):
-                # Same state and control as the line before: same (free) motion.
-                end, step_length = previous_end, previous_length
-            else:
-                x, y = row[0], row[1]
-                if not point_free(x, y):
-                    raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
-                                    f"{_place(problem, x, y)}", line, (x, y))
-                slices = (self.last_slices if index == n - 1 and self.last_slices
-                          else slice_states(row[:4], row[4:]))
-                step_length = 0.0
-                for k, (sx, sy, _, _) in enumerate(slices):
-                    if not point_free(sx, sy):
-                        raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: control "
-                                        f"{_angle(*row[4:])} from state {_angle(*row[:4])}: "
-                                        f"slice {k + 1} of {spaceship.SLICES} at "
-                                        f"{_place(problem, sx, sy)}", line, (sx, sy))
-                    step_length += math.hypot(sx - x, sy - y)
-                    x, y = sx, sy
-                end = slices[-1]
-                previous_row, previous_end, previous_length = row, end, step_length
+            if not (row == previous_row and _same_signs(row, previous_row)):
+                # (Same state and control as the line before: same valid motion.)
+                previous_row, previous = row, self._motion(index, row, line)
+            end, step_length = previous
             length += step_length
             if mismatch is None and index + 1 < n:
-                claimed = plan.trajectory_row(index + 1)[:4]
+                claimed = plan.trajectory_row(index + 1)[:dims]
                 if not all(abs(a - b) <= STATE_TOLERANCE for a, b in zip(claimed, end)):
                     mismatch = self.fail(
-                        7, dynamics_message(row[4:], row[:4], claimed, end),
+                        7, dynamics_message(row[dims:], row[:dims], claimed, end),
                         f"line {line}: its control applied to its state does not give line "
-                        f"{line + 1}'s state (tolerance {STATE_TOLERANCE} in each of x, y, "
-                        "dx, dy)", line + 1, (claimed[0], claimed[1]))
+                        f"{line + 1}'s state (tolerance {STATE_TOLERANCE} in each of "
+                        f"{', '.join(names)})", line + 1, (claimed[0], claimed[1]))
         self.path_length = length
-        collision_free = self.passed(6, f"{n} steps of {spaceship.SLICES} slices")
+        collision_free = self.passed(6, f"{n} steps of {self.system.slices} slices")
         if mismatch is not None:
             return collision_free, mismatch.result
         return collision_free, self.passed(7)
@@ -417,8 +427,8 @@ class _Validation:
             results.append(self.check_bounds())
             results.append(self.check_start())
             results.append(self.check_goal())
-            if self.vehicle.is_spaceship:
-                results.extend(self.check_spaceship_motion())
+            if self.system.kinodynamic:
+                results.extend(self.check_kinodynamic_motion())
             else:
                 results.append(self.check_point_collisions())
         except _Failed as failure:
@@ -426,17 +436,26 @@ class _Validation:
         return results
 
 
-def validate_output(problem: Problem, vehicle: Vehicle, output_text: str,
+def validate_output(problem: Problem, vehicle: Vehicle | str, output_text: str,
                     strict: bool = False, limits: Limits = Limits(),
                     output_cap_exceeded: int | None = None) -> ValidationReport:
-    """Run checks 1 to 7 of SPEC 3 on a planner's output for ``problem``.
+    """Run checks 1 to 7 of SPEC 3 on a planner's output for a ``.sw`` problem
+    and the named vehicle (:func:`validate_plan` over its SpaceInformation)."""
+    return validate_plan(grid_space_information(problem, vehicle), output_text, strict,
+                         limits, output_cap_exceeded)
+
+
+def validate_plan(si: SpaceInformation, output_text: str, strict: bool = False,
+                  limits: Limits = Limits(),
+                  output_cap_exceeded: int | None = None) -> ValidationReport:
+    """Run checks 1 to 7 of SPEC 3 on a planner's output.
 
     ``strict``: a point segment that cuts a blocked cell's corner between samples
     fails check 6 instead of giving a warning. ``output_cap_exceeded``: the cap in
     bytes, when the planner's output was cut off at it (check 1 then fails).
     Never raises on any text.
     """
-    run = _Validation(problem, vehicle, strict, limits)
+    run = _Validation(si, strict, limits)
     checks = run.run(output_text, output_cap_exceeded)
-    return ValidationReport(vehicle, strict, checks, run.warnings, run.corner_cuts, run.plan,
+    return ValidationReport(si.system, strict, checks, run.warnings, run.corner_cuts, run.plan,
                             run.path_length, run.final_state)

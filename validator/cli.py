@@ -19,9 +19,9 @@ import sys
 from typing import Sequence
 
 from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    vehicle_from_flags)
+                                    read_problem_from_stdin, vehicle_from_flags)
 from planning_core.problem import Problem
-from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
+from planning_core.problem_text import format_problem
 from planning_core.vehicles import Vehicle
 from validator.checks import (CHECK_NAMES, CHECK_TITLES, INVALID_VERDICT, CheckResult,
                               ValidationReport, validate_output)
@@ -183,15 +183,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if os.path.isdir(args.o) or not os.path.isdir(folder) or not os.access(folder, os.W_OK):
             parser.error(f"-o {args.o}: cannot write a file there")
 
-    if sys.stdin.isatty():
-        sys.stderr.write(f"{PROG}: reading the problem from stdin (end it with Ctrl-D)\n")
-    raw = sys.stdin.buffer.read()
-    try:
-        problem = parse_problem(raw.decode("utf-8", errors="replace"))
-    except ProblemFormatError as error:
-        sys.stderr.write(f"{PROG}: bad problem: {error}\n")
+    problem = read_problem_from_stdin(PROG)
+    if problem is None:
         return EXIT_USAGE
-    del raw
     label = _stdin_label()
 
     run = run_planner(command, format_problem(problem).encode("ascii"), timeout=args.timeout,

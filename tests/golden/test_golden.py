@@ -32,7 +32,8 @@ def test_every_case_is_recorded():
 @pytest.mark.parametrize("case", list(_params()))
 def test_output_matches_golden(case):
     vehicle, planner, problem, seed = case
-    done = run_planner(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text())
+    done = run_planner(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text(),
+                       timeout=900)
     expected = GOLDEN[case_id(*case)]
     assert done.returncode == expected["exit"], done.stderr.decode()
     assert len(done.stdout) == expected["bytes"]
