@@ -15,7 +15,7 @@ import random
 import statistics
 import time
 
-from rrt_cli.nearest import LinearNearest, QuadtreeNearest
+from planning_core.nearest.quadtree import LinearNearest, QuadtreeNearest
 
 
 def grow(structure, size: int, width: float, height: float, seed: int,

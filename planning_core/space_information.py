@@ -31,6 +31,11 @@ class SpaceInformation:
         self.position_free = world.point_free
         self.printable = world.point_strictly_inside
 
+    @property
+    def space(self):
+        """The system's state space within this world's bounds (spaces.StateSpace)."""
+        return self.system.state_space(self.world.width, self.world.height)
+
     # -- states and motions ------------------------------------------------------
     def is_valid(self, state: Sequence[float]) -> bool:
         """The state's position is free (SPEC 1: in the map, not in a blocked cell)."""

@@ -4,7 +4,7 @@ import random
 
 import pytest
 
-from rrt_cli.nearest import LinearNearest, QuadtreeNearest
+from planning_core.nearest.quadtree import LinearNearest, QuadtreeNearest
 
 
 @pytest.mark.parametrize("width,height,spread,duplicates", [

@@ -23,6 +23,11 @@ class PointVehicle:
     position_indices: ClassVar[tuple[int, ...]] = (0, 1)
     velocity_indices: ClassVar[tuple[int, ...]] = ()
 
+    def state_space(self, width: float, height: float):
+        """The map's rectangle, Euclidean distance."""
+        from planning_core.spaces import StateSpace
+        return StateSpace.real_vector(("x", "y"), (0.0, 0.0), (width, height))
+
     def start_state(self, x: float, y: float) -> State:
         return (x, y)
 

@@ -47,6 +47,14 @@ class Spaceship:
     def full_turn(self) -> bool:
         return self.theta_range >= FULL_TURN
 
+    def state_space(self, width: float, height: float):
+        """Positions within the map, velocities unbounded; distance by position
+        (the grid planners' nearest node is the nearest by position)."""
+        from planning_core.spaces import StateSpace, Variable
+        return StateSpace.from_metric(
+            (Variable("x", 0.0, width), Variable("y", 0.0, height), Variable("dx"),
+             Variable("dy")), {"x,y": 1.0})
+
     def start_state(self, x: float, y: float) -> State:
         """SPEC 2: the ship starts at rest."""
         return (x, y, 0.0, 0.0)

@@ -136,22 +136,6 @@ class GridWorld:
         return best
 
 
-def sample_free_point(rng: random.Random, free_cells: Sequence[int],
-                      width: int) -> tuple[float, float]:
-    """Uniform over the free space: a uniform free cell, then uniform inside it.
-
-    Every cell has the same area, so this is exactly uniform over the free
-    region, without the rejections that make sampling the whole map slow on
-    crowded maps. The point is strictly inside the map.
-    """
-    while True:
-        row, column = divmod(free_cells[int(rng.random() * len(free_cells))], width)
-        x, y = column + rng.random(), row + rng.random()
-        # Cell 0's lower edge is the map's edge: x == 0 or y == 0 is not printable.
-        if x > 0.0 and y > 0.0:
-            return (x, y)
-
-
 def segment_meets_cell(x0: float, y0: float, x1: float, y1: float,
                        column: int, row: int) -> float | None:
     """Smallest t in [0, 1] with P(t) in ``[column, column+1) x [row, row+1)``.

@@ -15,7 +15,7 @@ from __future__ import annotations
 import random
 
 from planning_core.problem import Problem
-from planning_core.worlds.grid import sample_free_point
+from planning_core.worlds.grid_cells import sample_free_point
 
 Point = tuple[float, float]
 

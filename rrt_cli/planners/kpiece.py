@@ -1,4 +1,4 @@
-"""KPIECE1 for the spaceships: Kinodynamic motion Planning by Interior-Exterior
+"""KPIECE1 for kinodynamic systems: Kinodynamic motion Planning by Interior-Exterior
 Cell Exploration (I. A. Sucan and L. E. Kavraki, "Kinodynamic motion planning by
 interior-exterior cell exploration", WAFR 2008; "A sampling-based tree planner
 for systems with complex dynamics", IEEE Trans. Robotics 28(1), 2012).
@@ -70,21 +70,11 @@ _KEEP_UNINTERESTING = 0.05
 @dataclass(frozen=True)
 class KPIECEParams:
     cell_size: float | None = None
-    """Side of a projection cell in map units. None: derived from the map, half
-    a map cell on maps under 20 cells a side (the course's), one map cell on
-    larger ones: the width of a maze corridor. (Until 2026-11-23 it was
-    ``max(0.5, max(W, H) / 40)``, 2.5 units on a 100x100 map: cells that span a
-    maze's walls, in which it solved no 50x50 or 100x100 maze in 30 s.)"""
+    """Side of a projection cell in map units. None: half a map cell on maps under
+    20 cells a side, one map cell (a maze corridor's width) on larger ones."""
     velocity_cell_size: float | None = 0.2
-    """With a value (default 0.2 map units per step), the projection is 4-D
-    ``(x, y, dx, dy)`` and velocities are binned at this size; None: the
-    projection is the position only. With the position alone, a cell first
-    crossed at speed counts as explored, and the slow states a ship needs to
-    take a maze's corners there are pruned as uninteresting; seeds 1-3, 30 s:
-    the left-only ship solved maze-100 in a median 3.2 s with 0.2 against 0/3
-    with None (maze-50 seed 1: 2.3 s against 106 s), ``-grad`` maze-100 1.4 s
-    against 8.9 s; elsewhere as fast or faster but for ``-grad`` open-100
-    (0.08 s against 0.05 s). 0.1 did about as well."""
+    """With a value, the projection is position and velocity, velocities binned at
+    this size (map units per step); None: the position only."""
     goal_bias: float = 0.05
     """Probability of expanding the motion closest to the goal instead of a
     cell's motion (OMPL's default, 0.05)."""
@@ -103,22 +93,12 @@ class KPIECEParams:
     prune_uninteresting: bool = True
     """Drop 95 % of the motions that only reach well-covered cells (as OMPL does)."""
     goal_controls: int = 10
-    """Controls tried when a goal-biased expansion (step 2's close motion) is made:
-    1 is the published algorithm, one random control for a random duration; with
-    more (default 10, as RRT's steering), each is held for one step and the free
-    one ending closest to the goal is kept. KPIECE1 has no steering, so its last
-    approach to the small goal disc (radius 0.1) is slow: on course space-1 it
-    solved 2 of 4 seeds in 6 s with 1, 4 of 4 in 0.1 s with 10. This is the one
-    departure from the paper, and it is off with ``goal_controls=1``."""
+    """Controls tried in a goal-biased expansion, each held for one step, the valid
+    one ending nearest the goal kept; 1 is the published algorithm (one random control)."""
 
     goal_distance: str = "cells"
-    """How a state's distance to the goal is measured, for the cells' initial
-    scores, the goal bias's close motions and its steering: "cells" (default),
-    along the free cells (:class:`planning_core.worlds.grid_distance.CellDistanceToGoal`),
-    or "euclidean", the straight line (the paper's and OMPL's). On a maze the
-    straight line points into walls; seed 1, 30 s, ``-grad``: maze-50 solved in
-    5 s against not at all, maze-100 in 4 s (with the one-cell ``cell_size``)
-    against not at all, and 1.5 to 5 times faster on 100x100 random fields."""
+    """"cells": distance to the goal along free space, where the world offers it
+    (cell scores, close motions, goal steering); "euclidean": the straight line (the paper's)."""
 
     def __post_init__(self):
         if self.goal_distance not in ("euclidean", "cells"):

@@ -28,9 +28,10 @@ from dataclasses import dataclass
 from typing import Callable
 
 from planning_core.space_information import SpaceInformation
-from planning_core.worlds.grid import GridWorld, sample_free_point
+from planning_core.worlds.grid import GridWorld
+from planning_core.worlds.grid_cells import sample_free_point
 from rrt_cli.graph_search import astar
-from rrt_cli.nearest import QuadtreeNearest
+from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
 from rrt_cli.planners.point_common import first_blocked_segment, goal_vertex, path_length
 

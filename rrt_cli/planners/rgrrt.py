@@ -1,4 +1,4 @@
-"""RG-RRT for the spaceships: reachability-guided RRT (A. Shkolnik, M. Walter and
+"""RG-RRT for kinodynamic systems: reachability-guided RRT (A. Shkolnik, M. Walter and
 R. Tedrake, "Reachability-guided sampling for planning under differential
 constraints", IEEE ICRA 2009).
 
@@ -44,8 +44,8 @@ A second departure (``goal_controls``): a node the goal is within one step's
 reach of also gets a few random controls in its reachable set, as the fixed
 full-thrust steps tend to jump over the small goal disc.
 
-Reachable positions live in a :class:`~rrt_cli.nearest.QuadtreeNearest`; each
-point's index maps to its node and control.
+Reachable positions live in a :class:`~planning_core.nearest.quadtree.QuadtreeNearest`;
+each point's index maps to its node and control.
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ import time
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
-from rrt_cli.nearest import QuadtreeNearest
+from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
 from rrt_cli.planners.tree import MotionTree
 
@@ -68,56 +68,24 @@ class RGRRTParams:
     """Probability that the random target is the goal (as RRT's, SPEC 2)."""
     guided_share: float = 0.2
     """With ``goal_distance="cells"``: share of the iterations that take the
-    best-first step (see ``goal_distance``) instead of drawing a target. It was
-    ``goal_bias`` (0.05) until 2026-11-23; with ``guide_by_stopping_point`` 0.2
-    was 1.8-5 times faster (median, 8 seeds, both ships) on maze-100,
-    narrow-50, narrow-100, open-100 and random-d20-100, and none got slower."""
+    best-first step instead of drawing a target."""
     guide_by_stopping_point: bool = True
-    """The best-first step ranks a reachable state by the free-cell distance to
-    the goal of the point where the ship would come to rest under full braking
-    (``speed**2 / (2 * 0.5)`` ahead along its velocity); a state whose braking
-    line meets a blocked cell comes after every other. False: by the distance of
-    its own position. Ranked by position, the step favours the fastest states
-    down a corridor, which then cannot take the next corner, and a maze's
-    corners become plateaus of thousands of such states. maze-100, 30 s,
-    ``guided_share`` 0.2: ``-grad`` 2 of 4 seeds solved by position, 8 of 8 by
-    the braking point (median 0.6 s); left-only a median 3.2 s (4 seeds)
-    against 0.9 s (8 seeds)."""
+    """The best-first step ranks a state by the distance along free space of where
+    full braking would stop it (a braking line into a wall ranks last); False: by its position."""
     angles: int = 8
-    """Thrust directions in each node's reachable set, evenly spaced from 0
-    (straight ahead): over [0, 2 pi) for the plain ship, over [0, pi] with both
-    ends for the left-only ship, so that full braking (theta = pi, which SPEC 3
-    allows) is in its set. Until 2026-11-23 the left-only set stopped at 7/8 pi,
-    and could brake only while turning left: 4 seeds, 30 s, maze-100 2/4 solved
-    against 4/4, narrow-100 a median 11.6 s against 3.3 s."""
+    """Thrust directions in each node's reachable set, evenly spaced from straight
+    ahead over the system's theta range (a half turn closed at both ends: full braking included)."""
     thrusts: tuple[float, ...] = (0.5,)
-    """Thrust magnitudes used at every angle; zero thrust (coasting) is always in
-    the set as well. Default: the extreme one only. Adding the middle thrust
-    (0.25) was measured slower on the course maps and mazes, and far slower for
-    the left-only ship (docs/planners-spaceship.md): the weak-thrust states sit
-    close to their node, so they win many nearest queries while making little
-    progress."""
+    """Thrust magnitudes used at every angle; coasting is always in the set too."""
     goal_controls: int = 10
-    """Random controls added to the reachable set of a node that the goal is
-    within one step's reach of (its distance to the goal at most its speed plus
-    the largest thrust). The fixed set's full-thrust and coasting steps jump
-    over the 0.1 goal disc: one ``-grad`` narrow-100 run got a node 0.11 from
-    the goal within 2 000 iterations and ran 60 s more before it landed. 0 is
-    the paper (the fixed set only); see also KPIECE1's ``goal_controls``."""
+    """Random controls added to the reachable set of a node the goal is within one
+    step's reach of (the fixed set tends to jump over the goal disc); 0 is the paper."""
     random_controls: int = 0
-    """Extra random controls per node (theta uniform over the range, thrust
-    uniform in [0, 0.5]), drawn once when the node is added. 0: the reachable
-    set is the fixed one only, as in the paper."""
+    """Extra random controls per node, drawn once when it is added; 0 is the paper."""
 
     goal_distance: str = "cells"
-    """"cells" (default): ``guided_share`` of the iterations add the unused
-    reachable state of the whole tree that is nearest the goal along the free
-    cells (:class:`planning_core.worlds.grid_distance.CellDistanceToGoal`), a greedy
-    best-first step; the others draw a target (the goal with ``goal_bias``).
-    "euclidean": every iteration draws a target, as the paper has it. Seed 1,
-    30 s, ``-grad``, when the step took 5% of the iterations and ranked by
-    position: maze-20 in 0.11 s against 16 s, maze-50 in 14 s and open-100 in
-    1.2 s against not at all."""
+    """"cells": ``guided_share`` of the iterations add the unused reachable state
+    nearest the goal along free space (greedy best-first); "euclidean": the paper's RG-RRT."""
 
     def __post_init__(self):
         if self.goal_distance not in ("euclidean", "cells"):

@@ -1,12 +1,12 @@
 """RRT (LaValle 1998, "Rapidly-exploring random trees: a new tool for path
-planning"), as the course's reference planner runs it, for the point vehicle
-and the spaceships.
+planning"), as the course's reference planner runs it, for any system.
 
 Each iteration draws a target (the goal with probability ``goal_bias``, else a
 uniform point of the map), finds the tree node nearest to it by position and
-extends that node toward it with the vehicle's steering. The search ends at the
-first node within ``goal_tolerance`` of the goal, like OMPL's RRT with its
-default "stop at first solution".
+extends that node toward it with the system's steering (straight lines for a
+geometric system, the best of random controls for a kinodynamic one). The search
+ends at the first node in the goal region, like OMPL's RRT with its default
+"stop at first solution".
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import time
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
-from rrt_cli.nearest import QuadtreeNearest
+from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree
@@ -38,8 +38,8 @@ class RRTParams:
     """Geometric systems: a partial extension shorter than this adds no node."""
     wall_clearance: float = 1.0
     """Geometric systems: a partial extension stops this far short of the first
-    invalid state. A node pressed against a wall is the nearest node to every
-    target behind it, and its extensions fail at once (measurements: docs/decisions.md)."""
+    invalid state (a node pressed against a wall fails every extension toward
+    the targets behind it; docs/parameter-history.md)."""
 
 
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,

@@ -33,9 +33,9 @@ from dataclasses import dataclass
 from enum import Enum
 
 from planning_core.space_information import SpaceInformation
-from planning_core.worlds.grid import sample_free_point
+from planning_core.worlds.grid_cells import sample_free_point
 from planning_core.worlds.grid_frontier import FrontierCells
-from rrt_cli.nearest import QuadtreeNearest
+from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
 from rrt_cli.planners.point_common import goal_vertex
 from rrt_cli.planners.steering import StraightLineSteering
@@ -61,11 +61,8 @@ class RRTConnectParams:
     instead of the whole map: on crowded maps and mazes most whole-map targets
     lie inside walls and only feed extensions that stop at the wall."""
     frontier_targets: float = 0.9
-    """Share of the random targets drawn from the trees' frontier: free cells
-    no node lies in yet next to a cell one does (:mod:`planning_core.worlds.grid_frontier`);
-    the rest are drawn as ``free_space_targets`` says. 0 gives the published
-    RRT-Connect. In a 100x100 maze this takes the median time from about 80 s
-    to under 1 s; the uniform share keeps every free point a possible target."""
+    """Share of the random targets drawn from the trees' frontier (free cells with
+    no node beside covered ones, where the world offers it); 0 gives the published RRT-Connect."""
     def __post_init__(self):
         if not 0.0 <= self.frontier_targets <= 1.0:
             raise ValueError("frontier_targets must be in [0, 1]")

@@ -5,7 +5,7 @@ import random
 
 import pytest
 
-from rrt_cli.nearest import QuadtreeNearest
+from planning_core.nearest.quadtree import QuadtreeNearest
 
 
 def brute_force(xs, ys, x, y, k):

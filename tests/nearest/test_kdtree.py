@@ -1,0 +1,199 @@
+"""The kd-tree answers exactly as a linear scan sorting by (distance, index).
+
+The oracle here is that definition written out; ``LinearScan`` is checked
+against it too. Points and queries mix uniform samples, RRT-like clusters,
+duplicates, lattice points (many equal distances) and angles at, near and
+beyond +-pi.
+"""
+
+import heapq
+import math
+import random
+
+import pytest
+
+from planning_core.nearest.kdtree import KDTree, LinearScan, angle_slack, compile_box_bound
+from planning_core.spaces import StateSpace, Variable
+
+PI = math.pi
+
+
+def r2():
+    return StateSpace.real_vector(("x", "y"), (0, 0), (10, 10))
+
+
+def se2():
+    variables = (Variable("x", 0, 10), Variable("y", 0, 10), Variable("theta", angle=True))
+    return StateSpace.from_metric(variables, [("x,y", 0.7), ("theta", 0.3)])
+
+
+def trailer():
+    """5-D, two angles sharing a group."""
+    variables = (Variable("x", 0, 10), Variable("y", 0, 10), Variable("theta", angle=True),
+                 Variable("psi", angle=True), Variable("v", -2, 2))
+    return StateSpace.from_metric(variables, [("x,y", 1.0), ("theta,psi", 0.5), ("v", 0.3)])
+
+
+def unicycle():
+    """SPEC 5.2's default metric: v and omega weigh nothing."""
+    variables = (Variable("x", 0, 10), Variable("y", 0, 10), Variable("theta", angle=True),
+                 Variable("v", -5, 5), Variable("omega", -PI / 2, PI / 2))
+    return StateSpace.from_metric(variables, [("x,y", 1.0), ("theta", 0.5)])
+
+
+SPACES = {"R2": r2, "SE2": se2, "trailer5": trailer, "unicycle5": unicycle}
+
+_SEAM = (PI, -PI, math.nextafter(PI, 0), math.nextafter(-PI, 0), 3 * PI, -3 * PI,
+         PI - 1e-9, -PI + 1e-9, PI + 1e-9, 0.0, PI / 2, -PI / 2)
+
+
+def make_state(space, rng, earlier):
+    """A state of one of several kinds, chosen at random."""
+    kind = rng.random()
+    if earlier and kind < 0.08:
+        return rng.choice(earlier)                        # an exact duplicate
+    if earlier and kind < 0.35:                           # RRT-like: a small step from a point
+        base = rng.choice(earlier)
+        step = [rng.gauss(0, 0.05) for _ in base]
+        return tuple(b + s for b, s in zip(base, step))
+    state = list(space.sample_uniform(rng))
+    if kind < 0.5:                                        # a lattice point: equal distances
+        state = [float(round(v)) for v in state]
+    for i, v in enumerate(space.variables):
+        if v.angle and rng.random() < 0.4:
+            state[i] = rng.choice(_SEAM) + (rng.gauss(0, 1e-3) if rng.random() < 0.5 else 0.0)
+            if rng.random() < 0.2:
+                state[i] += 2 * PI * rng.choice((-2, -1, 1, 2))   # an unwrapped turn
+    return tuple(state)
+
+
+def ranked(space, points, query):
+    """The definition: every point as (distance, index); sorting ranks them."""
+    return [(space.distance(query, p), i) for i, p in enumerate(points)]
+
+
+def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
+    """Grow both structures point by point, querying in between."""
+    rng = random.Random(seed)
+    tree, scan = KDTree(space, leaf_capacity), LinearScan(space)
+    points = []
+    per_point = n_queries / n_points
+    owed = 0.0
+    for n in range(n_points):
+        p = make_state(space, rng, points)
+        points.append(p)
+        assert tree.add(p) == scan.add(p) == n
+        owed += per_point
+        while owed >= 1.0:
+            owed -= 1.0
+            q = make_state(space, rng, points)
+            pairs = ranked(space, points, q)
+            first = [i for _, i in heapq.nsmallest(20, pairs)]
+            # Radius: often exactly some point's distance (the boundary is inclusive).
+            radius = pairs[first[min(len(first) - 1, rng.randrange(12))]][0]
+            if rng.random() < 0.3:
+                radius *= rng.uniform(0.5, 2.0)
+            inside = [i for _, i in sorted(pair for pair in pairs if pair[0] <= radius)]
+            checked = [tree] + ([scan] if n % scan_every == 0 else [])
+            for structure in checked:
+                assert structure.nearest(q) == first[0], (n, q)
+                for k in (1, 5, 20):
+                    assert structure.k_nearest(q, k) == first[:k], (n, q, k)
+                assert structure.within(q, radius) == inside, (n, q, radius)
+    assert len(tree) == len(scan) == n_points
+    return tree
+
+
+@pytest.mark.parametrize("name", sorted(SPACES))
+@pytest.mark.parametrize("leaf_capacity", [2, 8])
+def test_equals_linear_scan(name, leaf_capacity):
+    compare(SPACES[name](), n_points=400, n_queries=500, leaf_capacity=leaf_capacity,
+            seed=len(name) * 10 + leaf_capacity, scan_every=3)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["R2", "SE2", "trailer5"])
+@pytest.mark.parametrize("leaf_capacity", [3, 8])
+def test_equals_linear_scan_10000_queries(name, leaf_capacity):
+    compare(SPACES[name](), n_points=1000, n_queries=10_000, leaf_capacity=leaf_capacity,
+            seed=7 + leaf_capacity, scan_every=10)
+
+
+def test_lattice_ties_go_to_the_earliest():
+    space = r2()
+    tree = KDTree(space, leaf_capacity=2)
+    for x, y in [(1, 1), (0, 0), (1, 0), (0, 1), (0, 0), (1, 1)]:
+        tree.add((float(x), float(y)))
+    centre = (0.5, 0.5)
+    assert tree.nearest(centre) == 0
+    assert tree.k_nearest(centre, 6) == [0, 1, 2, 3, 4, 5]
+    assert tree.k_nearest((0.0, 0.0), 3) == [1, 4, 2]
+    assert tree.within((0.0, 0.0), 1.0) == [1, 4, 2, 3]
+
+
+def test_wraps_across_the_seam():
+    space = se2()
+    tree = KDTree(space, leaf_capacity=2)
+    for theta in (0.0, 3.0, -2.0, 1.0, -3.1):
+        tree.add((5.0, 5.0, theta))
+    assert tree.nearest((5.0, 5.0, PI)) == 4          # -3.1 is 0.04 away over the seam
+    assert tree.nearest((5.0, 5.0, 3.0 + 2 * PI)) == 1
+    assert tree.k_nearest((5.0, 5.0, -PI), 2) == [4, 1]
+
+
+def test_large_unwrapped_angles_stay_exact():
+    space = se2()
+    rng = random.Random(11)
+    tree, scan = KDTree(space, 4), LinearScan(space)
+    for _ in range(300):
+        p = (rng.uniform(0, 10), rng.uniform(0, 10), rng.uniform(-1e7, 1e7))
+        tree.add(p)
+        scan.add(p)
+    for _ in range(300):
+        q = (rng.uniform(0, 10), rng.uniform(0, 10), rng.uniform(-1e7, 1e7))
+        assert tree.k_nearest(q, 5) == scan.k_nearest(q, 5)
+
+
+def test_box_bound_never_exceeds_a_distance_inside():
+    rng = random.Random(4)
+    for space in (se2(), trailer()):
+        bound = compile_box_bound(space)
+        for _ in range(3000):
+            points = [space.wrap(make_state(space, rng, [])) for _ in range(rng.randint(1, 4))]
+            lo = [min(c) for c in zip(*points)]
+            hi = [max(c) for c in zip(*points)]
+            q = make_state(space, rng, [])
+            extent = max(abs(v) for v in q + tuple(c for p in points for c in p))
+            b = bound(space.wrap(q), lo, hi, angle_slack(extent))
+            assert all(b <= space.distance(q, p) for p in points)
+
+
+def test_edges():
+    space = se2()
+    for structure in (KDTree(space), LinearScan(space)):
+        with pytest.raises(ValueError):
+            structure.nearest((0.0, 0.0, 0.0))
+        assert structure.k_nearest((0.0, 0.0, 0.0), 3) == []
+        assert structure.within((0.0, 0.0, 0.0), 1.0) == []
+        with pytest.raises(ValueError):
+            structure.add((0.0, 0.0))
+        with pytest.raises(ValueError):
+            structure.add((0.0, math.nan, 0.0))
+        assert structure.add([1.0, 2.0, 3.0]) == 0
+        assert structure[0] == (1.0, 2.0, 3.0)
+        assert structure.k_nearest((0.0, 0.0, 0.0), 0) == []
+        assert structure.k_nearest((0.0, 0.0, 0.0), 5) == [0]
+        assert structure.within((0.0, 0.0, 0.0), math.inf) == [0]
+        with pytest.raises(ValueError):
+            structure.within((0.0, 0.0, 0.0), -1.0)
+        with pytest.raises(ValueError):
+            structure.nearest((0.0, 0.0, math.inf))
+
+
+def test_all_duplicates_do_not_split_forever():
+    space = trailer()
+    tree = KDTree(space, leaf_capacity=2)
+    for _ in range(200):
+        tree.add((1.0, 2.0, PI, -PI, 0.5))
+    assert tree.nearest((0.0, 0.0, 0.0, 0.0, 0.0)) == 0
+    assert tree.within((1.0, 2.0, -PI, PI, 0.5), 0.0) == list(range(200))
