@@ -145,32 +145,7 @@ class KDTree:
         """Index of the nearest point; ties go to the earliest inserted."""
         if self._root is None:
             raise ValueError("nearest() on an empty structure")
-        q, key, slack = self._prepare(query)
-        dist, bound, points = self._distance, self._bound, self._points
-        best_d, best_i = math.inf, -1
-        # Entries (bound, node); the near child goes in with bound -1 (not yet
-        # computed: its subtree's boxes are checked below it, a leaf's on arrival).
-        stack = [(-1.0, self._root)]
-        pop, push = stack.pop, stack.append
-        while stack:
-            b, node = pop()
-            if b > best_d:
-                continue
-            bucket = node[6]
-            if bucket is not None:
-                if b < 0.0 and bound(key, node[0], node[1], slack) > best_d:
-                    continue
-                for i in bucket:
-                    d = dist(q, points[i])
-                    if d < best_d or (d == best_d and i < best_i):
-                        best_d, best_i = d, i
-                continue
-            near, far = (node[4], node[5]) if key[node[2]] < node[3] else (node[5], node[4])
-            b = bound(key, far[0], far[1], slack)
-            if b <= best_d:
-                push((b, far))
-            push((-1.0, near))
-        return best_i
+        return self.k_nearest(query, 1)[0]
 
     def k_nearest(self, query: Sequence[float], k: int) -> list[int]:
         """Indices of the ``k`` nearest points, nearest first (ties: smaller index

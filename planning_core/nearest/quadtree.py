@@ -61,12 +61,11 @@ class QuadtreeNearest:
             if len(child[5]) > self.leaf_capacity and child[2] - child[0] > _MIN_NODE_SIZE:
                 self._split(child)
 
-    def nearest(self, x: float, y: float) -> int:
-        """Index of the point closest to (x, y); ties go to the earliest inserted."""
-        if not self.xs:
-            raise ValueError("nearest() on an empty structure")
-        xs, ys = self.xs, self.ys
-        best_index, best_d2 = -1, math.inf
+    def _search(self, x: float, y: float, visit) -> None:
+        """Walk the leaves that may hold a point closer than the bound, nearest
+        quadrant first: ``visit(indices)`` scans a leaf and returns the bound
+        (squared distance) to prune by from then on."""
+        bound = math.inf
         stack = [self.root]
         pop, push = stack.pop, stack.append
         while stack:
@@ -74,16 +73,11 @@ class QuadtreeNearest:
             # Squared distance from the query to the node's box.
             gx = node[0] - x if x < node[0] else (x - node[2] if x > node[2] else 0.0)
             gy = node[1] - y if y < node[1] else (y - node[3] if y > node[3] else 0.0)
-            if gx * gx + gy * gy > best_d2:
+            if gx * gx + gy * gy > bound:
                 continue
             children = node[4]
             if children is None:
-                for index in node[5]:
-                    ddx = xs[index] - x
-                    ddy = ys[index] - y
-                    d2 = ddx * ddx + ddy * ddy
-                    if d2 < best_d2 or (d2 == best_d2 and index < best_index):
-                        best_d2, best_index = d2, index
+                bound = visit(node[5])
                 continue
             # Push the far quadrants first so the query's own quadrant pops first.
             q = _quadrant(node, x, y)
@@ -91,7 +85,27 @@ class QuadtreeNearest:
             push(children[q ^ 1])
             push(children[q ^ 2])
             push(children[q])
-        return best_index
+
+    def nearest(self, x: float, y: float) -> int:
+        """Index of the point closest to (x, y); ties go to the earliest inserted."""
+        if not self.xs:
+            raise ValueError("nearest() on an empty structure")
+        xs, ys = self.xs, self.ys
+        best = [math.inf, -1]  # squared distance, index
+
+        def visit(indices: list[int]) -> float:
+            best_d2, best_index = best
+            for index in indices:
+                ddx = xs[index] - x
+                ddy = ys[index] - y
+                d2 = ddx * ddx + ddy * ddy
+                if d2 < best_d2 or (d2 == best_d2 and index < best_index):
+                    best_d2, best_index = d2, index
+            best[0], best[1] = best_d2, best_index
+            return best_d2
+
+        self._search(x, y, visit)
+        return best[1]
 
     def k_nearest(self, x: float, y: float, k: int) -> list[int]:
         """Indices of the ``k`` points closest to (x, y), nearest first.
@@ -105,34 +119,19 @@ class QuadtreeNearest:
         xs, ys = self.xs, self.ys
         # Max-heap of the k best so far, as (-d2, -index): the top is the worst kept.
         kept: list[tuple[float, int]] = []
-        worst_d2 = math.inf
-        stack = [self.root]
-        pop, push = stack.pop, stack.append
-        while stack:
-            node = pop()
-            gx = node[0] - x if x < node[0] else (x - node[2] if x > node[2] else 0.0)
-            gy = node[1] - y if y < node[1] else (y - node[3] if y > node[3] else 0.0)
-            if gx * gx + gy * gy > worst_d2:
-                continue
-            children = node[4]
-            if children is None:
-                for index in node[5]:
-                    ddx = xs[index] - x
-                    ddy = ys[index] - y
-                    d2 = ddx * ddx + ddy * ddy
-                    if len(kept) < k:
-                        heapq.heappush(kept, (-d2, -index))
-                        if len(kept) == k:
-                            worst_d2 = -kept[0][0]
-                    elif d2 < worst_d2 or (d2 == worst_d2 and index < -kept[0][1]):
-                        heapq.heapreplace(kept, (-d2, -index))
-                        worst_d2 = -kept[0][0]
-                continue
-            q = _quadrant(node, x, y)
-            push(children[3 - q])
-            push(children[q ^ 1])
-            push(children[q ^ 2])
-            push(children[q])
+
+        def visit(indices: list[int]) -> float:
+            for index in indices:
+                ddx = xs[index] - x
+                ddy = ys[index] - y
+                d2 = ddx * ddx + ddy * ddy
+                if len(kept) < k:
+                    heapq.heappush(kept, (-d2, -index))
+                elif d2 < -kept[0][0] or (d2 == -kept[0][0] and index < -kept[0][1]):
+                    heapq.heapreplace(kept, (-d2, -index))
+            return -kept[0][0] if len(kept) == k else math.inf
+
+        self._search(x, y, visit)
         kept.sort(reverse=True)
         return [-negated_index for _, negated_index in kept]
 

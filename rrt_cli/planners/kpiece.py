@@ -52,12 +52,11 @@ import heapq
 import math
 import random
 import sys
-import time
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
-from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
-from rrt_cli.planners.tree import MotionTree
+from rrt_cli.planners.base import PlanResult, StopCondition
+from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
 _GOAL_DISTANCE_OFFSET = 1e-3
@@ -329,9 +328,23 @@ class _Search:
             self.close.consider(node, distance)
         return None
 
+    @property
+    def iterations(self) -> int:
+        return self.iteration - 1
+
+    def begin(self) -> None:
+        """File the start in its cell and among the close motions."""
+        start_distance = self.goal_distance(self.si.start)
+        self.file_node(0, self.project(self.si.start), start_distance)
+        self.close.consider(0, start_distance)
+
+    def exhausted(self) -> str:
+        return ""  # a cell always has a motion to expand
+
     def iterate(self) -> int | None:
         """One expansion (steps 1-4 of the module docstring); a goal node or None."""
         params = self.params
+        self.iteration += 1
         node, cell, steering = self.pick()
         control, steps = self.motion(self.tree.states[node], steering)
         if len(steps) >= (1 if steering else params.min_steps):
@@ -353,25 +366,7 @@ class _Search:
 
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: KPIECEParams = KPIECEParams()) -> PlanResult:
-    if not si.system.kinodynamic:
-        raise ValueError("KPIECE1 plans for kinodynamic systems only")
-    began = time.perf_counter()
-    search = _Search(si, rng, params)
-    tree, system = search.tree, si.system
-    start_distance = search.goal_distance(si.start)
-    search.file_node(0, search.project(si.start), start_distance)
-    if si.goal.reached(si.start):
-        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
-    search.close.consider(0, start_distance)
-    while True:
-        limit = stop.status(search.iteration - 1)
-        if limit is not None:
-            return tree.result(system, limit, None, search.iteration - 1, began)
-        search.iteration += 1
-        goal_node = search.iterate()
-        if goal_node is not None:
-            return tree.result(system, PlanStatus.SOLVED, goal_node, search.iteration - 1,
-                               began)
+    return run_tree_search(si, stop, lambda: _Search(si, rng, params), "KPIECE1")
 
 
 def _projection(system, inverse_cell: float, velocity_cell_size: float | None):

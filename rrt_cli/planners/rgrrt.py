@@ -53,13 +53,12 @@ from __future__ import annotations
 import heapq
 import math
 import random
-import time
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
 from planning_core.nearest.quadtree import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
-from rrt_cli.planners.tree import MotionTree
+from rrt_cli.planners.base import PlanResult, StopCondition
+from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 
 @dataclass(frozen=True)
@@ -220,6 +219,15 @@ class _Search:
             return -1  # the target lies behind the node: no move of it gets closer
         return chosen
 
+    def begin(self) -> int | None:
+        return self.expand(0)
+
+    def exhausted(self) -> str:
+        # Every reachable state is a node already (all but the start are).
+        if len(self.reach) == len(self.tree) - 1:
+            return "no reachable state is left to extend to"
+        return ""
+
     def iterate(self) -> int | None:
         """One iteration (module docstring); a goal node or None."""
         rng, params = self.rng, self.params
@@ -237,24 +245,7 @@ class _Search:
 
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RGRRTParams = RGRRTParams()) -> PlanResult:
-    if not si.system.kinodynamic:
-        raise ValueError("RG-RRT plans for kinodynamic systems only")
-    began = time.perf_counter()
-    search = _Search(si, rng, params)
-    tree, system = search.tree, si.system
-    if si.goal.reached(si.start):
-        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
-    goal_node = search.expand(0)
-    while goal_node is None:
-        limit = stop.status(search.iterations)
-        if limit is not None:
-            return tree.result(system, limit, None, search.iterations, began)
-        if len(search.reach) == len(tree) - 1:
-            # Every reachable state is a node already (all but the start are).
-            return tree.result(system, PlanStatus.UNREACHABLE, None, search.iterations,
-                               began, "no reachable state is left to extend to")
-        goal_node = search.iterate()
-    return tree.result(system, PlanStatus.SOLVED, goal_node, search.iterations, began)
+    return run_tree_search(si, stop, lambda: _Search(si, rng, params), "RG-RRT")
 
 
 # Ranks a braking line that meets a blocked cell after every free one (well below

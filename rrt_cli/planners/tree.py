@@ -54,3 +54,29 @@ class MotionTree:
         stats = PlanStats(iterations, len(self.states), time.perf_counter() - began)
         return PlanResult(status, system, path, path_controls, tuple(self.edges()), stats,
                           message)
+
+
+def run_tree_search(si, stop, make_search, name: str) -> PlanResult:
+    """The loop of the kinodynamic tree planners: ``make_search()`` sets up (on the
+    clock); a start in the goal region is the answer; otherwise ``search.begin()``,
+    then ``search.iterate()`` until one returns a goal node, a limit of ``stop``
+    falls or ``search.exhausted()`` says why no node is left to extend. ``search``
+    keeps ``tree`` and ``iterations``."""
+    if not si.system.kinodynamic:
+        raise ValueError(f"{name} plans for kinodynamic systems only")
+    began = time.perf_counter()
+    search = make_search()
+    tree, system = search.tree, si.system
+    if si.goal.reached(si.start):
+        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+    goal_node = search.begin()
+    while goal_node is None:
+        limit = stop.status(search.iterations)
+        if limit is not None:
+            return tree.result(system, limit, None, search.iterations, began)
+        why = search.exhausted()
+        if why:
+            return tree.result(system, PlanStatus.UNREACHABLE, None, search.iterations, began,
+                               why)
+        goal_node = search.iterate()
+    return tree.result(system, PlanStatus.SOLVED, goal_node, search.iterations, began)
