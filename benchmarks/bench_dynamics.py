@@ -1,6 +1,6 @@
 """One spaceship extension: 10 controls x 20 slices, pure Python vs one numpy batch.
 
-The planner integrates with plain Python floats (planning_core.vehicles.spaceship);
+The planner integrates with plain Python floats (planning_core.systems.spaceship);
 this measures whether a numpy batch over the 10 controls would be cheaper at this
 size. Medians over repeats, ratio measured in the same run.
 
@@ -15,7 +15,9 @@ import random
 import statistics
 import timeit
 
-from planning_core.vehicles import spaceship
+from planning_core.problem import Problem
+from planning_core.systems import spaceship
+from planning_core.worlds.grid import GridWorld
 
 
 def numpy_batch(np, state, thetas, thrusts, blocked, width, height):
@@ -47,7 +49,10 @@ def main(argv: list[str] | None = None) -> int:
     import numpy as np  # only the comparison needs it
 
     width = height = 50
-    blocked_list = [0] * (width * height)  # open map: no early exits, the worst case
+    # Open map: no early exits, the worst case.
+    problem = Problem(width, height, bytes(width * height), (1.0, 1.0), (2.0, 2.0))
+    position_free = GridWorld(problem).point_free
+    propagate_while = spaceship.SYSTEM.propagate_while
     blocked_array = np.zeros((height, width), dtype=bool)
     rng = random.Random(0)
     controls = [(rng.random() * 2 * math.pi, rng.random() * 0.5) for _ in range(10)]
@@ -57,7 +62,7 @@ def main(argv: list[str] | None = None) -> int:
 
     def pure_python():
         for control in controls:
-            spaceship.integrate(state, control, blocked_list, width, height)
+            propagate_while(state, control, position_free)
 
     def batched():
         numpy_batch(np, state, thetas, thrusts, blocked_array, width, height)

@@ -30,7 +30,8 @@ import time
 from dataclasses import dataclass
 
 from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle, spaceship
+from planning_core.systems import spaceship
+from planning_core.vehicles import Vehicle
 from planning_core.worlds.grid import GridWorld
 
 POINT_PLANNERS = ("rrt", "rrtconnect")
@@ -174,14 +175,14 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
     v = params.velocity_bound
     space = ob.RealVectorStateSpace(4)
     space.setBounds(_bounds(ob, (0.0, 0.0, -v, -v), (float(width), float(height), v, v)))
-    theta_range = (spaceship.LEFT_THETA_RANGE if vehicle is Vehicle.LEFT_SPACESHIP
-                   else spaceship.THETA_RANGE)
+    theta_range = vehicle.system.theta_range  # 2 pi, or pi for the left-only ship
     controls = oc.RealVectorControlSpace(space, 2)
     # OMPL samples [low, high]; theta_range itself (2 pi or pi) is drawn with
     # probability zero and is a legal angle anyway.
     controls.setBounds(_bounds(ob, (0.0, 0.0), (theta_range, spaceship.MAX_THRUST)))
     info = oc.SpaceInformation(space, controls)
-    integrate = spaceship.integrate
+    propagate_while = spaceship.SYSTEM.propagate_while
+    position_free = GridWorld(problem).point_free
     tree: list[tuple[float, ...]] = []
 
     def is_valid(state) -> bool:
@@ -192,7 +193,7 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
         # duration is always one step of 1.0 (setMinMaxControlDuration(1, 1)).
         state = (start[0], start[1], start[2], start[3])
         applied = (control[0], control[1])
-        end = integrate(state, applied, blocked, width, height)
+        end = propagate_while(state, applied, position_free)
         if end is None or not (end[0] > 0.0 and end[1] > 0.0):
             result[0], result[1], result[2], result[3] = -1.0, -1.0, 0.0, 0.0  # invalid
             return
@@ -239,7 +240,7 @@ def _replay(problem: Problem, controls, durations) -> tuple[tuple[float, ...], .
     for control, duration in zip(controls, durations):
         for _ in range(max(1, round(duration))):  # one line per step held
             lines.append(state + tuple(control))
-            state = spaceship.propagate(state, control)
+            state = spaceship.SYSTEM.propagate(state, control)
     if not lines:
         lines.append(state + (0.0, 0.0))  # started in the goal: zero thrust stays there
     return tuple(lines)

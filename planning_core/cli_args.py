@@ -1,11 +1,15 @@
 """What every command line of the project shares: an argument parser whose errors
 are one usage line and one error line on stderr with exit status 2 (never a
-traceback), and the number types its options take."""
+traceback), with hints for the usual slips; the option types (ASCII numbers only,
+ranges checked before any conversion); the one bounded reader of the problem on
+stdin; and writes to stdout and stderr that never raise."""
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
+import re
 import sys
 
 from planning_core.problem import Problem
@@ -13,26 +17,192 @@ from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
 
 EXIT_USAGE = 2
+MAX_PROBLEM_BYTES = 64 * 1024 * 1024
+"""The most bytes of problem read from stdin (the validator's cap on a planner's
+output); a longer stdin is a bad problem, found after reading one byte past it."""
+SEED_LIMIT = 2 ** 64
+"""Seeds are integers in [0, SEED_LIMIT): random.Random(-n) would equal Random(n)."""
+MAX_COUNT = 2 ** 63 - 1
+"""The largest integer option (an iteration limit)."""
+
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+_DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_READ_CHUNK = 1 << 20
+
+
+def _show(text: str) -> str:
+    return repr(text if len(text) <= 40 else text[:37] + "...")
+
+
+# ----- writes that never raise ------------------------------------------------------
+
+
+def _point_at_devnull(fd: int) -> None:
+    """Make ``fd`` /dev/null (a closed or failing standard stream)."""
+    try:
+        null = os.open(os.devnull, os.O_RDWR)
+        if null != fd:
+            os.dup2(null, fd)
+            os.close(null)
+    except OSError:
+        pass
+
+
+def reserve_standard_fds() -> None:
+    """Open /dev/null on any of fds 0-2 that is closed, so that no file or pipe the
+    program opens later takes its number (a pipe on fd 2 would be inherited by a
+    child as its stderr). ``sys.stdin``/``sys.stdout``/``sys.stderr`` stay None."""
+    for fd in (0, 1, 2):
+        try:
+            os.fstat(fd)
+        except OSError:
+            _point_at_devnull(fd)
+
+
+def say(line: str) -> None:
+    """``line`` on stderr. Never raises, so never changes an exit status: a closed
+    or full stderr is pointed at /dev/null, so the exit's flush cannot fail either."""
+    stream = sys.stderr
+    if stream is None:
+        return
+    try:
+        stream.write(line + "\n")
+        stream.flush()
+    except (OSError, ValueError):
+        _point_at_devnull(2)
+
+
+def write_stdout(text: str) -> OSError | None:
+    """Write ``text`` to stdout and flush: None when it is written, else the error
+    (stdout closed, full, or its reader gone: a BrokenPipeError). A failed stdout is
+    pointed at /dev/null, so the interpreter's exit flush cannot fail again."""
+    stream = sys.stdout
+    if stream is None:
+        return OSError("stdout is closed")
+    try:
+        stream.write(text)
+        stream.flush()
+    except OSError as error:
+        _point_at_devnull(1)
+        return error
+    except ValueError:  # the stream object was closed
+        return OSError("stdout is closed")
+    return None
+
+
+def describe_os_error(error: OSError) -> str:
+    return error.strerror or str(error) or type(error).__name__
+
+
+# ----- the parser -------------------------------------------------------------------
+
+
+def looks_like_problem_file(arg: str) -> bool:
+    """An argument surely meant as the problem: a .sw name, or an existing file that
+    is not executable (an executable is a planner: the validator's hint is then ``--``)."""
+    return arg.endswith(".sw") or (os.path.isfile(arg) and not os.access(arg, os.X_OK))
+
+
+def _terminal_columns() -> int:
+    """shutil.get_terminal_size().columns without importing shutil."""
+    columns = os.environ.get("COLUMNS", "")
+    if columns.isascii() and columns.isdigit() and len(columns) <= 6 and int(columns) > 0:
+        return int(columns)
+    try:
+        return os.get_terminal_size(sys.__stdout__.fileno()).columns or 80
+    except (AttributeError, ValueError, OSError):
+        return 80
+
+
+class _HelpFormatter(argparse.HelpFormatter):
+    """argparse's layout and width, without argparse's import of shutil (and zlib,
+    bz2, lzma with it): every add_argument makes a formatter, so every run paid it."""
+
+    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None, **more):
+        width = _terminal_columns() - 2 if width is None else width
+        super().__init__(prog, indent_increment, max_help_position, width, **more)
 
 
 class OneLineErrorParser(argparse.ArgumentParser):
-    """``argparse`` with errors as ``usage: ...`` and ``PROG: error: ...``, exit 2."""
+    """``argparse`` with errors as ``usage: ...`` and ``PROG: error: ...``, exit 2; an
+    unknown argument gets a hint (a near-miss option, a problem file given by name)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", _HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"{self.prog}: error: {message}\n")
+        say(self.format_usage().rstrip("\n"))
+        say(f"{self.prog}: error: {message}")
         raise SystemExit(EXIT_USAGE)
+
+    def parse_args(self, args=None, namespace=None):
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            self.reject_extras(extras)
+        return parsed
+
+    def reject_extras(self, extras: list[str], more_hints: tuple[str, ...] = ()) -> None:
+        """argparse's "unrecognized arguments" error, with the hints in brackets."""
+        hints = [*self.extras_hints(extras), *more_hints]
+        suffix = f" ({'; '.join(hints)})" if hints else ""
+        self.error(f"unrecognized arguments: {' '.join(extras)}{suffix}")
+
+    def extras_hints(self, extras: list[str]) -> list[str]:
+        hints = []
+        for arg in extras:
+            if arg.startswith("-") and len(arg) > 1:
+                near = self.near_miss(arg)
+                if near is not None:
+                    hints.append(f"did you mean {near}?")
+            elif looks_like_problem_file(arg):
+                hints.append(f"the problem is read from stdin: use < {arg}")
+        return hints
+
+    def near_miss(self, arg: str) -> str | None:
+        """The option string closest to ``arg`` (difflib's default cutoff), or None."""
+        import difflib  # only on this error path
+        options = [s for action in self._actions for s in action.option_strings]
+        close = difflib.get_close_matches(arg.split("=", 1)[0], options, n=1)
+        return close[0] if close else None
+
+
+# ----- option types -----------------------------------------------------------------
 
 
 def positive_float(text: str) -> float:
-    """An option value that must be a positive finite number (a time limit)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    """An option value that must be a positive finite ASCII decimal (a time limit)."""
+    if not _DECIMAL.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"{_show(text)} is not a number")
+    value = float(text)
     if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive finite number")
+        raise argparse.ArgumentTypeError(f"{_show(text)} must be a positive finite number")
     return value
+
+
+def _bounded_integer(text: str, low: int, high: int, what: str) -> int:
+    """An ASCII integer in [low, high]; its digits are counted before int() sees them."""
+    if not _INTEGER.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"{_show(text)} is not an integer")
+    digits = text.lstrip("+-").lstrip("0") or "0"
+    if len(digits) <= len(str(high)):
+        value = -int(digits) if text.startswith("-") else int(digits)
+        if low <= value <= high:
+            return value
+    raise argparse.ArgumentTypeError(f"{_show(text)} is out of range: {what}")
+
+
+def seed(text: str) -> int:
+    """A random seed: an integer in [0, 2^64)."""
+    return _bounded_integer(text, 0, SEED_LIMIT - 1, "a seed is an integer in [0, 2^64)")
+
+
+def positive_int(text: str) -> int:
+    """A count (an iteration limit): an integer in [1, 2^63)."""
+    return _bounded_integer(text, 1, MAX_COUNT, "expected an integer in [1, 2^63)")
+
+
+# ----- vehicle flags ----------------------------------------------------------------
 
 
 def add_vehicle_flags(parser: argparse.ArgumentParser, title: str) -> None:
@@ -55,14 +225,51 @@ def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> 
     return Vehicle.SPACESHIP if args.grad else Vehicle.POINT
 
 
-def read_problem_from_stdin(prog: str) -> Problem | None:
-    """The ``.sw`` problem on stdin; None after one ``PROG: bad problem: ...`` line
-    on stderr (the caller exits 2). A terminal on stdin gets a one-line notice."""
-    if sys.stdin.isatty():
-        sys.stderr.write(f"{prog}: reading the problem from stdin (end it with Ctrl-D)\n")
-    raw = sys.stdin.buffer.read()
+# ----- the problem on stdin ---------------------------------------------------------
+
+
+def _read_capped(stream, cap: int) -> bytearray | None:
+    """At most ``cap`` bytes of ``stream`` (None if there are more), in chunks, so
+    memory stays within the cap whatever is on the other end."""
+    data = bytearray()
+    while True:
+        chunk = stream.read(min(_READ_CHUNK, cap + 1 - len(data)))
+        if not chunk:
+            return data
+        data += chunk
+        if len(data) > cap:
+            return None
+
+
+def read_problem_text_from_stdin(prog: str, cap: int = MAX_PROBLEM_BYTES) -> str | None:
+    """The text on stdin (UTF-8, undecodable bytes replaced); None after one
+    ``PROG: ...`` line on stderr when it cannot be read or passes ``cap`` bytes (the
+    caller exits 2). A terminal on stdin gets a one-line notice first."""
+    stream = sys.stdin
+    if stream is None:
+        return ""  # stdin closed: an empty problem
     try:
-        return parse_problem(raw.decode("utf-8", errors="replace"))
+        if stream.isatty():
+            say(f"{prog}: reading the problem from stdin (end it with Ctrl-D)")
+        raw = _read_capped(stream.buffer, cap)
+    except OSError as error:
+        say(f"{prog}: cannot read the problem from stdin: {describe_os_error(error)}")
+        return None
+    if raw is None:
+        say(f"{prog}: bad problem: more than {cap} bytes on stdin (the cap is "
+            f"{cap / 2 ** 20:g} MiB)")
+        return None
+    return raw.decode("utf-8", errors="replace")
+
+
+def read_problem_from_stdin(prog: str) -> Problem | None:
+    """The ``.sw`` problem on stdin; None after one ``PROG: ...`` line on stderr (a
+    ``bad problem`` names the line and column; the caller exits 2)."""
+    text = read_problem_text_from_stdin(prog)
+    if text is None:
+        return None
+    try:
+        return parse_problem(text)
     except ProblemFormatError as error:
-        sys.stderr.write(f"{prog}: bad problem: {error}\n")
+        say(f"{prog}: bad problem: {error}")
         return None

@@ -158,7 +158,8 @@ class _Reader:
                                                f"integer), got {_show(self.line_preview())}")
         digits = match.group(1)
         lines_left = self.total_lines - self.line_no
-        count = int(digits) if len(digits) <= _MAX_COUNT_DIGITS else None
+        significant = digits.lstrip("0") or "0"  # leading zeros are no reason to refuse
+        count = int(significant) if len(significant) <= _MAX_COUNT_DIGITS else None
         if count is None or count > lines_left:
             raise PlanParseError(self.line_no, f"{what} count {_show(digits, 30)[1:-1]} but "
                                                f"only {lines_left} lines follow")

@@ -2,7 +2,10 @@
 
 Lenient where the course files vary (whitespace, CRLF, trailing blanks, the
 vacuum-world cells ``*`` and ``@``), strict everywhere else: every rejection is a
-:class:`ProblemFormatError` that names the line and column.
+:class:`ProblemFormatError` that names the line and column. Numbers are plain
+ASCII decimals. The reader walks the text by position with regular expressions
+that cannot backtrack badly, so time is linear and memory is the text itself,
+whatever the text (a hostile file is at most the CLIs' stdin cap).
 """
 
 from __future__ import annotations
@@ -14,11 +17,19 @@ from planning_core.problem import Problem
 
 FREE_CELLS = frozenset("_*@")
 BLOCKED_CELL = "#"
-_INTEGER = re.compile(r"[+-]?\d+\Z")
-_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\Z")
-_NON_FINITE = re.compile(r"[+-]?(nan|inf|infinity)\Z", re.IGNORECASE)
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+# No nested quantifiers that can trade digits: a long digit run fails in linear time.
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NON_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+_TOKEN = re.compile(r"\S+")
+_BLANK_LINES = re.compile(r"(?:[^\S\n]*\n)*")
+_BLANK_REST = re.compile(r"[^\S\n]*")
+_NOT_A_CELL = re.compile(r"[^_*@#]")
+_BLOCKED_BYTES = bytes(1 if chr(b) == BLOCKED_CELL else 0 for b in range(256))
 # Generous, but keeps a hostile header from asking for gigabytes.
 MAX_CELLS = 50_000_000
+_MAX_SIZE_DIGITS = 18   # a longer size is certainly over MAX_CELLS: no int() of it
+_ROW_BLOCK_CHARS = 1 << 16  # about this much of the grid is matched at a time
 
 
 class ProblemFormatError(ValueError):
@@ -31,59 +42,88 @@ class ProblemFormatError(ValueError):
         self.message = message
 
 
-def _lines(text: str) -> list[str]:
-    # splitlines() also splits on \x0b, \x1c ... ; only \n and \r\n are line ends here.
-    return [line.rstrip("\r") for line in text.split("\n")]
+def _show(text: str) -> str:
+    """A token as messages quote it: repr, cut to 40 characters."""
+    return repr(text if len(text) <= 40 else text[:37] + "...")
+
+
+def _line_end(text: str, pos: int) -> int:
+    end = text.find("\n", pos)
+    return len(text) if end < 0 else end
 
 
 class _Cursor:
-    """Walks tokens across lines, remembering where each one came from."""
+    """Walks the text by position (lines end at ``\\n``; a line's final ``\\r`` is a blank),
+    keeping the 1-based line number of ``pos``."""
 
-    def __init__(self, lines: list[str]):
-        self.lines = lines
-        self.line_index = 0
-        self.column = 0
+    def __init__(self, text: str):
+        self.text = text
+        self.pos = 0
+        self.line = 1
+
+    def column_of(self, pos: int) -> int:
+        return pos - (self.text.rfind("\n", 0, pos) + 1) + 1
+
+    def move_to(self, pos: int) -> None:
+        self.line += self.text.count("\n", self.pos, pos)
+        self.pos = pos
 
     def next_token(self) -> tuple[str, int, int] | None:
-        while self.line_index < len(self.lines):
-            line = self.lines[self.line_index]
-            while self.column < len(line) and line[self.column].isspace():
-                self.column += 1
-            if self.column < len(line):
-                start = self.column
-                while self.column < len(line) and not line[self.column].isspace():
-                    self.column += 1
-                return line[start:self.column], self.line_index + 1, start + 1
-            self.line_index += 1
-            self.column = 0
-        return None
+        match = _TOKEN.search(self.text, self.pos)
+        if match is None:
+            return None
+        self.move_to(match.start())
+        self.pos = match.end()
+        return match.group(), self.line, self.column_of(match.start())
 
     def end_position(self) -> tuple[int, int]:
-        last = len(self.lines)
-        while last > 1 and not self.lines[last - 1].strip():
-            last -= 1
-        return last, len(self.lines[last - 1]) + 1 if self.lines else 1
+        """Just past the last non-blank line (line 1 if every line is blank)."""
+        text, end = self.text, len(self.text)
+        while end > 0:  # the last non-space character, a chunk at a time
+            start = max(0, end - 65536)
+            kept = text[start:end].rstrip()
+            if kept:
+                end = start + len(kept)
+                break
+            end = start
+        line_start = text.rfind("\n", 0, max(end - 1, 0)) + 1 if end else 0
+        line_text = text[line_start:_line_end(text, line_start)].rstrip("\r")
+        return text.count("\n", 0, line_start) + 1, len(line_text) + 1
 
     def skip_to_next_line(self) -> None:
         """Rows start on a fresh line after the size tokens."""
-        if self.column:
-            rest = self.lines[self.line_index][self.column:]
-            if rest.strip():
-                raise ProblemFormatError(self.line_index + 1, self.column + 1,
-                                         f"unexpected text {rest.strip()!r} after the map size")
-            self.line_index += 1
-            self.column = 0
+        end = _line_end(self.text, self.pos)
+        rest = self.text[self.pos:end]
+        if rest.strip():
+            raise ProblemFormatError(self.line, self.column_of(self.pos),
+                                     f"unexpected text {_show(rest.strip())} after the map size")
+        self.move_to(min(end + 1, len(self.text)))
+
+    def next_row(self) -> tuple[str, int] | None:
+        """The next non-blank line (without its ``\\r`` and trailing blanks) and its
+        line number, moving past it; None when only blank lines are left."""
+        text = self.text
+        self.move_to(_BLANK_LINES.match(text, self.pos).end())
+        if _BLANK_REST.match(text, self.pos).end() == len(text):
+            return None
+        end, line = _line_end(text, self.pos), self.line
+        row = text[self.pos:end].rstrip("\r").rstrip(" \t")
+        self.move_to(min(end + 1, len(text)))
+        return row, line
 
 
 def _read_size(cursor: _Cursor, what: str) -> int:
     token = cursor.next_token()
     if token is None:
-        line, column = cursor.end_position()
-        raise ProblemFormatError(line, column, f"missing map {what}")
+        raise ProblemFormatError(*cursor.end_position(), f"missing map {what}")
     text, line, column = token
-    if not _INTEGER.match(text):
-        raise ProblemFormatError(line, column, f"map {what} {text!r} is not an integer")
-    value = int(text)
+    if not _INTEGER.fullmatch(text):
+        raise ProblemFormatError(line, column, f"map {what} {_show(text)} is not an integer")
+    digits = text.lstrip("+-").lstrip("0")
+    if len(digits) > _MAX_SIZE_DIGITS:
+        raise ProblemFormatError(line, column, f"map {what} {_show(text)} is too large "
+                                               f"(a map has at most {MAX_CELLS} cells)")
+    value = -int(digits or "0") if text.startswith("-") else int(digits or "0")
     if value <= 0:
         raise ProblemFormatError(line, column, f"map {what} must be positive, got {value}")
     return value
@@ -92,17 +132,89 @@ def _read_size(cursor: _Cursor, what: str) -> int:
 def _read_coordinate(cursor: _Cursor, what: str) -> tuple[float, int, int]:
     token = cursor.next_token()
     if token is None:
-        line, column = cursor.end_position()
-        raise ProblemFormatError(line, column, f"missing {what}")
+        raise ProblemFormatError(*cursor.end_position(), f"missing {what}")
     text, line, column = token
-    if _NON_FINITE.match(text):
-        raise ProblemFormatError(line, column, f"{what} {text!r} is not a finite number")
-    if not _NUMBER.match(text):
-        raise ProblemFormatError(line, column, f"{what} {text!r} is not a number")
+    if _NON_FINITE.fullmatch(text):
+        raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a finite number")
+    if not _NUMBER.fullmatch(text):
+        raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a number")
     value = float(text)
     if not math.isfinite(value):
-        raise ProblemFormatError(line, column, f"{what} {text!r} is not a finite number")
+        raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a finite number")
     return value, line, column
+
+
+def _checked_row(cursor: _Cursor, width: int, height: int, rows_read: int) -> str:
+    """The next row, read line by line: the slow path, which explains a bad row."""
+    found = cursor.next_row()
+    if found is None:
+        raise ProblemFormatError(cursor.text.count("\n") + 1, 1, f"too few rows: expected "
+                                 f"{height}, found {rows_read}")
+    row_text, line = found
+    stripped = row_text.strip()
+    if _NUMBER.fullmatch(stripped) or _NON_FINITE.fullmatch(stripped):
+        raise ProblemFormatError(line, 1, f"too few rows: expected {height}, found {rows_read}")
+    if len(row_text) != width:
+        raise ProblemFormatError(line, min(len(row_text), width) + 1, f"row {rows_read + 1} "
+                                 f"has {len(row_text)} cells, expected {width}")
+    bad = _NOT_A_CELL.search(row_text)
+    if bad is not None:
+        raise ProblemFormatError(line, bad.start() + 1, f"unknown cell character "
+                                 f"{bad.group()!r} (expected '_', '#', '*' or '@')")
+    return row_text
+
+
+def _place_rows(blocked: bytearray, cells: bytes, width: int, top: int) -> None:
+    """Text rows (top first) into ``blocked`` (bottom row first), the first at row top-1."""
+    rows = len(cells) // width
+    if width == 1:
+        blocked[top - rows:top] = cells[::-1]
+        return
+    for i in range(rows):
+        row = top - 1 - i
+        blocked[row * width:(row + 1) * width] = cells[i * width:(i + 1) * width]
+
+
+def _read_rows(cursor: _Cursor, width: int, height: int) -> bytearray:
+    """The grid, row-major from the bottom row (the first text row is the top).
+
+    Blocks of well-formed rows (blank lines between them tolerated) are taken by one
+    regular expression each; a row it does not take goes through :func:`_checked_row`.
+    """
+    blocked = bytearray(width * height)
+    per_block = max(1, _ROW_BLOCK_CHARS // (width + 1))
+    rows_read = 0
+    while rows_read < height:
+        count = min(per_block, height - rows_read)
+        block = re.compile(rf"(?:(?:[^\S\n]*\n)*[_*@#]{{{width}}}[ \t]*\r*(?:\n|\Z))"
+                           rf"{{1,{count}}}").match(cursor.text, cursor.pos)
+        if block is None:
+            cells = _checked_row(cursor, width, height, rows_read)
+        else:
+            cells = _NOT_A_CELL.sub("", block.group())
+            cursor.move_to(block.end())
+        _place_rows(blocked, cells.encode("ascii").translate(_BLOCKED_BYTES), width,
+                    height - rows_read)
+        rows_read += len(cells) // width
+    return blocked
+
+
+def _check_points(problem: Problem, where: dict[str, tuple[int, int]]) -> None:
+    """Start and goal free (SPEC 1); the start also off the border, as the answer's
+    first line must lie strictly inside the map (SPEC 2) and is the start itself."""
+    width, height = problem.width, problem.height
+    for name, (x, y) in (("start", problem.start), ("goal", problem.goal)):
+        line, column = where[name]
+        if not (0.0 <= x < width and 0.0 <= y < height):
+            raise ProblemFormatError(line, column, f"{name} ({x!r}, {y!r}) is outside the "
+                                     f"map [0, {width}) x [0, {height})")
+        if problem.point_in_collision(x, y):
+            raise ProblemFormatError(line, column, f"{name} ({x!r}, {y!r}) is in blocked "
+                                     f"cell ({int(x)}, {int(y)})")
+        if name == "start" and (x == 0.0 or y == 0.0):
+            raise ProblemFormatError(line, column, f"start ({x!r}, {y!r}) is on the map's "
+                                     f"border: it must lie strictly inside (0, {width}) x "
+                                     f"(0, {height}), as every printed point must")
 
 
 def parse_problem(text: str) -> Problem:
@@ -112,65 +224,27 @@ def parse_problem(text: str) -> Problem:
         line = text.count("\n", 0, index) + 1
         column = index - (text.rfind("\n", 0, index) + 1) + 1
         raise ProblemFormatError(line, column, "binary data (NUL byte) in the problem")
-    lines = _lines(text)
-    cursor = _Cursor(lines)
+    cursor = _Cursor(text)
     width = _read_size(cursor, "width")
     height = _read_size(cursor, "height")
     if width * height > MAX_CELLS:
         raise ProblemFormatError(1, 1, f"map of {width} x {height} cells is larger than "
                                        f"{MAX_CELLS} cells")
     cursor.skip_to_next_line()
+    blocked = _read_rows(cursor, width, height)
 
-    blocked = bytearray(width * height)
-    rows_read = 0
-    index = cursor.line_index
-    while rows_read < height:
-        # Blank lines between the header and the rows, or between rows, are tolerated.
-        while index < len(lines) and not lines[index].strip():
-            index += 1
-        if index >= len(lines):
-            raise ProblemFormatError(len(lines), 1, f"too few rows: expected {height}, "
-                                                    f"found {rows_read}")
-        row_text = lines[index].rstrip(" \t")
-        line_number = index + 1
-        if _NUMBER.match(row_text.strip()) or _NON_FINITE.match(row_text.strip()):
-            raise ProblemFormatError(line_number, 1, f"too few rows: expected {height}, "
-                                                     f"found {rows_read}")
-        if len(row_text) != width:
-            column = min(len(row_text), width) + 1
-            raise ProblemFormatError(line_number, column, f"row {rows_read + 1} has "
-                                     f"{len(row_text)} cells, expected {width}")
-        row = height - 1 - rows_read  # the first text row is the top of the world
-        base = row * width
-        for column, char in enumerate(row_text):
-            if char == BLOCKED_CELL:
-                blocked[base + column] = 1
-            elif char not in FREE_CELLS:
-                raise ProblemFormatError(line_number, column + 1,
-                                         f"unknown cell character {char!r} "
-                                         "(expected '_', '#', '*' or '@')")
-        rows_read += 1
-        index += 1
-
-    cursor.line_index, cursor.column = index, 0
     start_x, sx_line, sx_col = _read_coordinate(cursor, "start x")
     start_y, _, _ = _read_coordinate(cursor, "start y")
     goal_x, gx_line, gx_col = _read_coordinate(cursor, "goal x")
     goal_y, _, _ = _read_coordinate(cursor, "goal y")
     extra = cursor.next_token()
     if extra is not None:
-        text_, line, column = extra
-        raise ProblemFormatError(line, column, f"unexpected text {text_!r} after the goal")
+        extra_text, line, column = extra
+        raise ProblemFormatError(line, column, f"unexpected text {_show(extra_text)} "
+                                               "after the goal")
 
     problem = Problem(width, height, bytes(blocked), (start_x, start_y), (goal_x, goal_y))
-    for (x, y), name, line, column in (((start_x, start_y), "start", sx_line, sx_col),
-                                       ((goal_x, goal_y), "goal", gx_line, gx_col)):
-        if not (0.0 <= x < width and 0.0 <= y < height):
-            raise ProblemFormatError(line, column, f"{name} ({x!r}, {y!r}) is outside the "
-                                     f"map [0, {width}) x [0, {height})")
-        if problem.point_in_collision(x, y):
-            raise ProblemFormatError(line, column, f"{name} ({x!r}, {y!r}) is in blocked "
-                                     f"cell ({int(x)}, {int(y)})")
+    _check_points(problem, {"start": (sx_line, sx_col), "goal": (gx_line, gx_col)})
     return problem
 
 

@@ -1,7 +1,8 @@
 """``rrt_cli``: read a `.sw` problem on stdin, print a trajectory and the motion tree.
 
-Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution within the
-limits (or the goal is certainly unreachable).
+Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
+its reader gone), 2 bad usage or bad problem, 3 no solution within the limits (or
+the goal is certainly unreachable). Writes to stderr never change the status.
 """
 
 from __future__ import annotations
@@ -9,10 +10,11 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import random
-import sys
 
-from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    read_problem_from_stdin, vehicle_from_flags)
+from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags,
+                                    describe_os_error, positive_float, positive_int,
+                                    read_problem_from_stdin, reserve_standard_fds, say, seed,
+                                    vehicle_from_flags, write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.space_information import grid_space_information
 from rrt_cli.planners import PLANNERS
@@ -20,27 +22,11 @@ from rrt_cli.planners.base import StopCondition
 from rrt_cli.smoothing import smooth_path
 
 EXIT_SOLVED = 0
+EXIT_OUTPUT_FAILED = 1
 EXIT_USAGE = 2
 EXIT_NO_SOLUTION = 3
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be positive")
-    return value
-
-
-def _seed(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -48,16 +34,17 @@ def build_parser() -> argparse.ArgumentParser:
         prog="rrt_cli",
         description="Plan on a grid map read from stdin (the .sw format); print the "
                     "trajectory and the motion tree on stdout.",
-        epilog="Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution "
-               "within the limits.")
+        epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "
+               "2 bad usage or bad problem, 3 no solution within the limits.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default="rrt", choices=sorted(PLANNERS),
                         help="planning algorithm (default: rrt)")
-    parser.add_argument("-seed", type=_seed, default=None,
-                        help="random seed; the same seed gives the same output byte for byte")
+    parser.add_argument("-seed", type=seed, default=None, metavar="N",
+                        help="random seed, an integer in [0, 2^64); the same seed gives the "
+                             "same output byte for byte")
     parser.add_argument("-time", type=positive_float, default=DEFAULT_TIME_LIMIT,
                         metavar="S", help=f"time limit in seconds (default: {DEFAULT_TIME_LIMIT:g})")
-    parser.add_argument("-iterations", type=_positive_int, default=DEFAULT_ITERATIONS,
+    parser.add_argument("-iterations", type=positive_int, default=DEFAULT_ITERATIONS,
                         metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")
     parser.add_argument("-smooth", action="store_true",
                         help="point vehicle: shorten the solution by shortcuts (off by default)")
@@ -75,16 +62,16 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("-smooth works on the point vehicle only")
     entry = PLANNERS[args.planner]
     if not entry.plans_for(system):
-        sys.stderr.write(f"rrt_cli: error: planner {args.planner!r} does not support the "
-                         f"{vehicle.value} vehicle\n")
+        say(f"rrt_cli: error: planner {args.planner!r} does not support the "
+            f"{vehicle.value} vehicle")
         return EXIT_USAGE
 
     problem = read_problem_from_stdin("rrt_cli")
     if problem is None:
         return EXIT_USAGE
 
-    seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)
-    rng = random.Random(seed)
+    run_seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)
+    rng = random.Random(run_seed)
     planner = entry.load()
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
     si = grid_space_information(problem, vehicle.value)
@@ -94,30 +81,34 @@ def main(argv: list[str] | None = None) -> int:
     stats = result.stats
     if args.stats:
         # One key=value line, stable for scripts (the benchmark harness parses it).
-        sys.stderr.write(f"rrt_cli stats: status={result.status.name.lower()} "
-                         f"planner={args.planner} vehicle={vehicle.value} seed={seed} "
-                         f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
-                         f"planning_seconds={stats.planning_seconds:.6f}\n")
+        say(f"rrt_cli stats: status={result.status.name.lower()} "
+            f"planner={args.planner} vehicle={vehicle.value} seed={run_seed} "
+            f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
+            f"planning_seconds={stats.planning_seconds:.6f}")
     if not result.solved:
         detail = f": {result.message}" if result.message else ""
-        sys.stderr.write(f"rrt_cli: no solution ({result.status.value}{detail}) after "
-                         f"{stats.iterations} iterations, {stats.planning_seconds:.2f} s "
-                         f"(seed {seed})\n")
+        say(f"rrt_cli: no solution ({result.status.value}{detail}) after "
+            f"{stats.iterations} iterations, {stats.planning_seconds:.2f} s "
+            f"(seed {run_seed})")
         return EXIT_NO_SOLUTION
-    sys.stdout.write(format_plan(result.trajectory, result.tree))
-    sys.stdout.flush()
-    return EXIT_SOLVED
+    failure = write_stdout(format_plan(result.trajectory, result.tree))
+    if failure is None:
+        return EXIT_SOLVED
+    if not isinstance(failure, BrokenPipeError):  # a reader that left (| head) wants no note
+        say(f"rrt_cli: cannot write the answer to stdout: {describe_os_error(failure)}")
+    return EXIT_OUTPUT_FAILED
 
 
 def entry_point() -> None:
+    reserve_standard_fds()
     try:
         status = main()
     except KeyboardInterrupt:
         status = 130
-    except BrokenPipeError:
-        # The reader went away (e.g. `| head`); nothing left to say.
-        sys.stderr.close()
-        status = 1
+    except SystemExit as done:  # -h, or a usage error
+        status = done.code
+    if status == EXIT_SOLVED and write_stdout("") is not None:  # e.g. -h into a full stdout
+        status = EXIT_OUTPUT_FAILED
     raise SystemExit(status)
 
 

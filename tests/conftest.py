@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import os
 import subprocess
 import sys
@@ -27,3 +28,28 @@ def course_problems() -> list[Path]:
     if not COURSE_PROBLEMS:
         pytest.fail(f"course problems not found in {COURSE_DIR}")
     return COURSE_PROBLEMS
+
+
+def seed_sweep(seeds, fast=(0,)) -> list:
+    """``seeds`` as parameters: the ``fast`` ones run in the unit run, the others
+    are marked slow (``-m "not slow"`` skips them; ``./test.sh`` runs them all).
+    Test ids stay the bare seeds."""
+    return [pytest.param(seed, marks=() if seed in fast else pytest.mark.slow)
+            for seed in seeds]
+
+
+def plan_in_process(monkeypatch, argv: list[str], problem_text: str) -> tuple[int, str, str]:
+    """``python -m rrt_cli ARGV < problem`` without a new interpreter: the exit
+    status, stdout and stderr."""
+    from rrt_cli import cli
+    stdin = io.TextIOWrapper(io.BytesIO(problem_text.encode()), encoding="utf-8")
+    stdout = io.TextIOWrapper(io.BytesIO(), encoding="utf-8")
+    stderr = io.TextIOWrapper(io.BytesIO(), encoding="utf-8")
+    with monkeypatch.context() as patch:
+        patch.setattr(sys, "stdin", stdin)
+        patch.setattr(sys, "stdout", stdout)
+        patch.setattr(sys, "stderr", stderr)
+        status = cli.main(argv)
+        stdout.flush()
+        stderr.flush()
+    return status, stdout.buffer.getvalue().decode(), stderr.buffer.getvalue().decode()

@@ -4,22 +4,25 @@
                   [-json] -- PLANNER [ARGS...] < problem.sw
 
 argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
-stdout, the PDF with render_pdf. Exit status: 0 valid, 1 invalid, 2 usage error
-or bad problem, 3 the planner could not be started or timed out (4: a bug of ours).
+stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
+1 invalid, 2 usage error, bad problem or a PDF that could not be written, 3 the
+planner could not be started or timed out, 4 no verdict could be given (stdout
+closed or full, or a bug of ours). Writes to stderr never change the status.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import signal
 import stat
 import sys
 from typing import Sequence
 
-from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    read_problem_from_stdin, vehicle_from_flags)
+from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, describe_os_error,
+                                    looks_like_problem_file, positive_float,
+                                    read_problem_from_stdin, reserve_standard_fds, say,
+                                    vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import format_problem
 from planning_core.vehicles import Vehicle
@@ -31,7 +34,8 @@ EXIT_VALID = 0
 EXIT_INVALID = 1
 EXIT_USAGE = 2
 EXIT_PLANNER_FAILED = 3
-EXIT_INTERNAL_ERROR = 4  # a validator bug: no verdict could be given
+EXIT_NO_VERDICT = 4  # no verdict could be given: stdout failed, or a validator bug
+EXIT_INTERNAL_ERROR = EXIT_NO_VERDICT
 DEFAULT_PDF = "tree-viz.pdf"
 PROG = "rrt-validator"
 
@@ -44,8 +48,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Read a .sw problem on stdin, run PLANNER ARGS (everything after --) "
                     "with the problem on its stdin, check the trajectory it prints "
                     "(SPEC 3, checks 1-7), print the verdict and draw the tree in a PDF.",
-        epilog="Exit status: 0 valid, 1 invalid, 2 usage error or bad problem, "
-               "3 the planner could not be started or timed out.")
+        epilog="Exit status: 0 valid, 1 invalid, 2 usage error, bad problem or unwritable "
+               "PDF, 3 the planner could not be started or timed out, 4 no verdict "
+               "could be given.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-strict", action="store_true",
                         help="a point segment cutting a blocked cell's corner between the "
@@ -149,73 +154,88 @@ def report_json(vehicle: Vehicle, strict: bool, report: ValidationReport | None,
     }
 
 
+def _output_path_problem(path: str) -> str | None:
+    """Why ``-o path`` cannot be written, found before the planner runs, or None.
+    A missing file is created and removed again (only trying tells, e.g. in /proc)."""
+    if not path:
+        return "the file name is empty"
+    if os.path.isdir(path):
+        return "it is a folder"
+    try:
+        if os.path.lexists(path):  # a dangling symlink's target is created, as open() would
+            # Non-blocking: a FIFO without a reader fails (ENXIO) instead of hanging.
+            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK | os.O_CREAT, 0o666))
+        else:
+            os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            os.unlink(path)
+    except OSError as error:
+        return describe_os_error(error)
+    return None
+
+
 def _write_pdf(path: str, problem: Problem, vehicle: Vehicle, report: ValidationReport | None,
                verdict: str, notes: list[str], label: str) -> bool:
+    """Draw the PDF into ``path``: True when written. A drawing bug is one line on
+    stderr and False (it must not cost the grader the verdict); a file that cannot
+    be written raises OSError (exit status 2)."""
     # Imported here: reportlab costs a few hundred ms and -noviz runs never need it.
     from validator.render_pdf import render_pdf
     try:
-        with open(path, "wb") as out:
-            render_pdf(out, problem, vehicle, report, verdict, notes, label)
-    except OSError as error:
-        sys.stderr.write(f"{PROG}: cannot write the PDF {path}: {error.strerror or error}\n")
-        return False
-    except Exception as error:  # a drawing bug must not cost the grader the verdict
-        sys.stderr.write(f"{PROG}: could not draw the PDF {path}: {error!r}\n")
+        # Given a path, render_pdf writes a temporary file beside it and renames it.
+        render_pdf(path, problem, vehicle, report, verdict, notes, label)
+    except OSError:
+        raise
+    except Exception as error:
+        say(f"{PROG}: could not draw the PDF {path}: {error!r}")
         return False
     return True
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if "--" in argv:
-        split = argv.index("--")
-        own, command = argv[:split], argv[split + 1:]
-    else:
-        own, command = argv, []
+def _separator_hint(argv: list[str], extras: list[str]) -> tuple[str, ...]:
+    """Without ``--``, an argument we do not know that is no problem file is most
+    likely the planner: show the command with ``--`` put before it."""
+    planner = next((arg for arg in extras
+                    if not arg.startswith("-") and not looks_like_problem_file(arg)), None)
+    if planner is None:
+        return ()
+    import shlex  # only on this error path
+    at = argv.index(planner)
+    suggestion = shlex.join([PROG, *argv[:at], "--", *argv[at:]])
+    return (f"the planner's command goes after --: {suggestion} < problem.sw",)
+
+
+def _parse_command_line(argv: list[str]) -> tuple[argparse.Namespace, Vehicle, list[str]]:
+    """Our flags, the vehicle and the planner's command; a usage error exits 2."""
+    has_separator = "--" in argv
+    split = argv.index("--") if has_separator else len(argv)
+    own, command = argv[:split], argv[split + 1:]
     parser = build_parser()
-    args = parser.parse_args(own)  # -h prints the help and exits 0
+    args, extras = parser.parse_known_args(own)  # -h prints the help and exits 0
+    if extras:
+        parser.reject_extras(extras, () if has_separator else _separator_hint(argv, extras))
     vehicle = vehicle_from_flags(parser, args)
     if not command:
         parser.error("no planner: put the planner's command after --, e.g. "
                      f"{PROG} -grad -- ./run.sh -grad < problem.sw")
     if not args.noviz:
-        folder = os.path.dirname(args.o) or "."
-        if os.path.isdir(args.o) or not os.path.isdir(folder) or not os.access(folder, os.W_OK):
-            parser.error(f"-o {args.o}: cannot write a file there")
+        why = _output_path_problem(args.o)
+        if why is not None:
+            parser.error(f"-o {args.o!r}: cannot write the PDF there ({why})")
+    return args, vehicle, command
 
-    problem = read_problem_from_stdin(PROG)
-    if problem is None:
-        return EXIT_USAGE
-    label = _stdin_label()
 
-    run = run_planner(command, format_problem(problem).encode("ascii"), timeout=args.timeout,
-                      output_cap=DEFAULT_OUTPUT_CAP)
-    messages = solver_messages(run)
-    report: ValidationReport | None = None
-    if run.ran_to_completion:
-        text = decode_output(run.output)
-        report = validate_output(problem, vehicle, text, strict=args.strict,
-                                 output_cap_exceeded=run.output_cap if run.output_cap_exceeded
-                                 else None)
-        del text
-        status = EXIT_VALID if report.valid else EXIT_INVALID
-        verdict = report.verdict
-    else:
-        status, verdict = EXIT_PLANNER_FAILED, INVALID_VERDICT
+def _validate(run: PlannerRun, problem: Problem, vehicle: Vehicle, strict: bool
+              ) -> tuple[ValidationReport | None, int, str]:
+    """The report (None when the planner did not run to the end), status, verdict."""
+    if not run.ran_to_completion:
+        return None, EXIT_PLANNER_FAILED, INVALID_VERDICT
+    report = validate_output(problem, vehicle, decode_output(run.output), strict=strict,
+                             output_cap_exceeded=run.output_cap if run.output_cap_exceeded
+                             else None)
+    return report, EXIT_VALID if report.valid else EXIT_INVALID, report.verdict
 
-    pdf = None
-    if not args.noviz:
-        if _write_pdf(args.o, problem, vehicle, report, verdict, messages, label):
-            pdf = args.o
 
-    if args.json:
-        sys.stdout.write(json.dumps(report_json(vehicle, args.strict, report, run, status, pdf),
-                                    allow_nan=False) + "\n")
-    else:
-        out = "".join(f"{message}\n" for message in messages)
-        out += report_text(report) if report is not None else f"{verdict}\n"
-        sys.stdout.write(out)
-    sys.stdout.flush()
+def _summary(run: PlannerRun, report: ValidationReport | None, pdf: str | None) -> str:
     summary = [f"planner {run.wall_time:.3f} s"]
     if report is not None and report.plan is not None:
         summary.append(f"{report.trajectory_count} trajectory lines, {report.tree_count} "
@@ -224,7 +244,44 @@ def main(argv: Sequence[str] | None = None) -> int:
         summary.append(f"path length {report.path_length:.6g}")
     if pdf:
         summary.append(f"wrote {pdf}")
-    sys.stderr.write(f"{PROG}: " + "; ".join(summary) + "\n")
+    return f"{PROG}: " + "; ".join(summary)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args, vehicle, command = _parse_command_line(argv)
+    problem = read_problem_from_stdin(PROG)
+    if problem is None:
+        return EXIT_USAGE
+    label = _stdin_label()
+
+    run = run_planner(command, format_problem(problem).encode("ascii"), timeout=args.timeout,
+                      output_cap=DEFAULT_OUTPUT_CAP)
+    messages = solver_messages(run)
+    report, status, verdict = _validate(run, problem, vehicle, args.strict)
+
+    pdf = None
+    if not args.noviz:
+        try:
+            if _write_pdf(args.o, problem, vehicle, report, verdict, messages, label):
+                pdf = args.o
+        except OSError as error:
+            say(f"{PROG}: cannot write the PDF {args.o}: {describe_os_error(error)}")
+            status = EXIT_USAGE
+
+    if args.json:
+        import json  # only for -json
+        out = json.dumps(report_json(vehicle, args.strict, report, run, status, pdf),
+                         allow_nan=False) + "\n"
+    else:
+        out = "".join(f"{message}\n" for message in messages)
+        out += report_text(report) if report is not None else f"{verdict}\n"
+    failure = write_stdout(out)
+    if failure is not None:
+        if not isinstance(failure, BrokenPipeError):  # a reader that left wants no note
+            say(f"{PROG}: cannot write the verdict to stdout: {describe_os_error(failure)}")
+        return EXIT_NO_VERDICT
+    say(_summary(run, report, pdf))
     return status
 
 
@@ -234,6 +291,7 @@ def _terminate(signum, frame):
 
 
 def entry_point() -> None:
+    reserve_standard_fds()
     for signum in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(signum, _terminate)
     # Whatever a planner printed may be echoed in a message: never fail on encoding it.
@@ -246,14 +304,13 @@ def entry_point() -> None:
         status = main()
     except KeyboardInterrupt:
         status = 130
-    except BrokenPipeError:
-        # The reader went away (e.g. `| head`); nothing left to say.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())  # no second error at the exit's flush
-        status = EXIT_INVALID
+    except SystemExit as done:  # -h, a usage error, or a signal (_terminate)
+        status = done.code
     except Exception as error:  # a bug of ours: say so in one line, not the planner's fault
-        sys.stderr.write(f"{PROG}: internal error, please report it: {error!r}\n")
-        status = EXIT_INTERNAL_ERROR
+        say(f"{PROG}: internal error, please report it: {error!r}")
+        status = EXIT_NO_VERDICT
+    if status == EXIT_VALID and write_stdout("") is not None:  # e.g. -h into a full stdout
+        status = EXIT_NO_VERDICT
     raise SystemExit(status)
 
 

@@ -1,12 +1,24 @@
 """Run a planner as a subprocess: problem on its stdin, its stdout read back.
 
 Written for hostile planners. The planner starts in its own session (so its
-own process group); its stdin and stdout are driven by one ``selectors`` loop,
-so a planner that never reads its input cannot block us; its stdout is read
-incrementally up to a cap; at the timeout, or when the output passes the cap,
-the whole process group is killed. Once the planner has exited, anything it
-left running in its group is killed too (such a leftover would otherwise keep
-the pipe open). The planner's stderr is passed through to ours.
+own process group); its stdin, stdout and stderr are driven by one ``selectors``
+loop, so a planner that never reads its input, or floods either output, cannot
+block us. Its stdout is read up to a cap (past it the planner is stopped); its
+stderr is passed on to ours up to another cap, the rest counted and dropped, and
+one line says so.
+
+Containment: at the timeout, when stdout passes the cap, and once the planner
+has exited, its process group is killed and, on Linux, every other process it
+started too. For that, while the planner runs, the caller is a child subreaper
+(``prctl(PR_SET_CHILD_SUBREAPER)``), so a descendant that leaves the group
+(``setsid``) and loses its parent is re-parented to us, not to init, and a walk
+of /proc still finds it; and the planner's parent-death signal is SIGKILL, so
+killing the validator, even with SIGKILL, kills the planner (what the planner
+started survives that: nothing of ours is left to kill it). The
+walk takes every process descended from the caller that started after the
+planner and is not under a child the caller had before: it assumes no other
+thread of the caller starts processes meanwhile. Where ``prctl`` or /proc is
+missing, only the group is killed.
 """
 
 from __future__ import annotations
@@ -15,15 +27,25 @@ import os
 import selectors
 import signal
 import subprocess
+import sys
 import time
-from dataclasses import dataclass
-from typing import Sequence
+from dataclasses import dataclass, replace
+from typing import Callable, Sequence
 
 DEFAULT_TIMEOUT = 60.0
 DEFAULT_OUTPUT_CAP = 64 * 1024 * 1024
+DEFAULT_STDERR_CAP = 1024 * 1024
 _READ_SIZE = 1 << 16
+_STDERR_WRITE = 4096  # at most PIPE_BUF: a pipe that polls writable takes it whole
 # After the planner exits, how long a process it left behind may keep stdout open.
 _DRAIN_GRACE = 0.5
+# How long the passed-on stderr may take to drain into a slow reader at the end.
+_STDERR_FLUSH_TIME = 1.0
+# How long the sweep of the planner's descendants keeps killing what it finds.
+_SWEEP_TIME = 2.0
+_PR_SET_PDEATHSIG = 1
+_PR_SET_CHILD_SUBREAPER = 36
+_PR_GET_CHILD_SUBREAPER = 37
 
 
 @dataclass(frozen=True)
@@ -41,11 +63,18 @@ class PlannerRun:
     output_cap: int = DEFAULT_OUTPUT_CAP
     timeout: float = DEFAULT_TIMEOUT
     wall_time: float = 0.0      # seconds from start to its exit (or to our kill)
+    stderr_bytes: int = 0       # what it wrote on stderr; the first ``stderr_cap`` were passed on
+    stderr_cap: int = DEFAULT_STDERR_CAP
 
     @property
     def ran_to_completion(self) -> bool:
         """Started, not timed out: its output can be validated."""
         return self.started and not self.timed_out
+
+    @property
+    def stderr_cut(self) -> bool:
+        """It wrote more on stderr than was passed on."""
+        return self.stderr_bytes > self.stderr_cap
 
 
 def _kill_group(pgid: int) -> None:
@@ -56,49 +85,41 @@ def _kill_group(pgid: int) -> None:
 
 
 def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFAULT_TIMEOUT,
-                output_cap: int = DEFAULT_OUTPUT_CAP) -> PlannerRun:
+                output_cap: int = DEFAULT_OUTPUT_CAP,
+                stderr_cap: int = DEFAULT_STDERR_CAP) -> PlannerRun:
     """Start ``command``, feed it ``stdin_data``, collect its stdout.
 
     Never raises for anything the planner does; returns within about ``timeout``
-    seconds (plus the time the kernel takes to kill the group).
+    seconds (plus the time the kernel takes to kill what it started, and at most
+    a second for a slow reader of our stderr).
     """
     command = tuple(command)
+    not_started = PlannerRun(command, b"", False, output_cap=output_cap, timeout=timeout,
+                             stderr_cap=stderr_cap)
+    if sys.stderr is not None:
+        sys.stderr.flush()  # what we wrote before comes before what the planner writes
+    stderr = _StderrSink(stderr_cap)  # before Popen: its pipes may reuse a closed fd 2
+    containment = _Containment()
     began = time.monotonic()
     try:
         process = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                   start_new_session=True)
+                                   stderr=subprocess.PIPE, start_new_session=True,
+                                   preexec_fn=containment.preexec())
     except (OSError, ValueError, subprocess.SubprocessError) as error:
-        return PlannerRun(command, b"", False, start_error=str(error), output_cap=output_cap,
-                          timeout=timeout)
-    pgid = process.pid  # start_new_session: the planner leads its own group
-    deadline = began + timeout
-    pump = _Pump(process, stdin_data, output_cap)
-    exit_time: float | None = None
+        containment.close()
+        return replace(not_started, start_error=str(error))
+    containment.started(process.pid)
+    pump = _Pump(process, stdin_data, output_cap, stderr)
     try:
-        while pump.stdout_open:
-            now = time.monotonic()
-            if exit_time is None and process.poll() is not None:
-                exit_time = now
-            if now >= deadline:
-                break
-            if exit_time is not None and now >= exit_time + _DRAIN_GRACE:
-                break  # it exited, something it left behind holds stdout open
-            limit = deadline if exit_time is None else min(deadline, exit_time + _DRAIN_GRACE)
-            pump.step(min(limit - now, 0.1))
-        # Its stdout is done with (EOF, cap, or abandoned); the planner itself may run on.
-        if process.poll() is None and not pump.cap_exceeded:
-            try:
-                process.wait(timeout=max(0.0, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                pass
-        exited_by_itself = process.poll() is not None
-        if exited_by_itself and exit_time is None:
-            exit_time = time.monotonic()
+        exit_time = _pump_until_done(process, pump, began + timeout)
     finally:
         # Also on Ctrl-C or SIGTERM: in its own session, the planner would not get them.
-        _kill_group(pgid)  # the planner if it is still running, and anything it left behind
+        _kill_group(process.pid)  # start_new_session: the planner leads its own group
         process.wait()
+        containment.sweep()  # what left the group
+        containment.close()
         pump.close()
+    exited_by_itself = exit_time is not None
     wall = (exit_time if exited_by_itself else time.monotonic()) - began
     code = process.returncode if exited_by_itself else None
     return PlannerRun(command, pump.output, True,  # no copy: it may be 64 MiB
@@ -106,33 +127,74 @@ def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFA
                       signal=-code if code is not None and code < 0 else None,
                       timed_out=not exited_by_itself and not pump.cap_exceeded,
                       output_cap_exceeded=pump.cap_exceeded, output_cap=output_cap,
-                      timeout=timeout, wall_time=wall)
+                      timeout=timeout, wall_time=wall, stderr_bytes=pump.stderr.total,
+                      stderr_cap=stderr_cap)
+
+
+def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
+                     ) -> float | None:
+    """Drive the pipes until both outputs end (or are abandoned) and the planner has
+    exited, or the deadline; returns when it exited (None: it has not)."""
+    exit_time: float | None = None
+    while pump.outputs_open and not pump.cap_exceeded:
+        now = time.monotonic()
+        if exit_time is None and process.poll() is not None:
+            exit_time = now
+        if now >= deadline:
+            break
+        if exit_time is not None and now >= exit_time + _DRAIN_GRACE:
+            break  # it exited, something it left behind holds an output open
+        limit = deadline if exit_time is None else min(deadline, exit_time + _DRAIN_GRACE)
+        pump.step(min(limit - now, 0.1))
+    # Its outputs are done with (EOF, cap, or abandoned); the planner itself may run on.
+    if process.poll() is None and not pump.cap_exceeded:
+        try:
+            process.wait(timeout=max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            pass
+    if exit_time is None and process.poll() is not None:
+        exit_time = time.monotonic()
+    return exit_time
 
 
 class _Pump:
-    """Writes the planner's stdin and reads its stdout without ever blocking."""
+    """Writes the planner's stdin, reads its stdout and stderr, never blocking."""
 
-    def __init__(self, process: subprocess.Popen, stdin_data: bytes, output_cap: int):
+    def __init__(self, process: subprocess.Popen, stdin_data: bytes, output_cap: int,
+                 stderr: _StderrSink):
         self.process = process
         self.output = bytearray()
         self.output_cap = output_cap
         self.cap_exceeded = False
+        self.stderr = stderr
         self.to_write = memoryview(stdin_data)
         self.stdin_fd, self.stdout_fd = process.stdin.fileno(), process.stdout.fileno()
-        os.set_blocking(self.stdin_fd, False)
-        os.set_blocking(self.stdout_fd, False)
-        self.selector = selectors.DefaultSelector()
+        self.stderr_fd = process.stderr.fileno()
+        for fd in (self.stdin_fd, self.stdout_fd, self.stderr_fd):
+            os.set_blocking(fd, False)
+        # poll, not epoll: our own stderr may be a regular file, which epoll refuses.
+        self.selector = (selectors.PollSelector() if hasattr(selectors, "PollSelector")
+                         else selectors.DefaultSelector())
         self.selector.register(self.stdout_fd, selectors.EVENT_READ)
-        self.stdout_open = True
+        self.selector.register(self.stderr_fd, selectors.EVENT_READ)
+        self.open_outputs = {self.stdout_fd, self.stderr_fd}
         self.stdin_open = True
         if self.to_write:
             self.selector.register(self.stdin_fd, selectors.EVENT_WRITE)
         else:
             self.close_stdin()
 
+    @property
+    def outputs_open(self) -> bool:
+        return bool(self.open_outputs)
+
+    @property
+    def stdout_open(self) -> bool:
+        return self.stdout_fd in self.open_outputs
+
     def close_stdin(self) -> None:
         if self.stdin_open:
-            if self.to_write is not None and self.stdin_fd in self.selector.get_map():
+            if self.stdin_fd in self.selector.get_map():
                 self.selector.unregister(self.stdin_fd)
             try:
                 self.process.stdin.close()
@@ -141,11 +203,16 @@ class _Pump:
             self.stdin_open = False
 
     def step(self, wait: float) -> None:
+        self.stderr.watch(self.selector)
         for key, _ in self.selector.select(timeout=max(wait, 0.0)):
             if key.fd == self.stdin_fd:
                 self._write()
-            elif self.stdout_open:
-                self._read()
+            elif key.fd == self.stdout_fd:
+                self._read_stdout()
+            elif key.fd == self.stderr_fd:
+                self._read_stderr()
+            else:
+                self.stderr.write_some()
 
     def _write(self) -> None:
         try:
@@ -159,30 +226,246 @@ class _Pump:
         if not self.to_write:
             self.close_stdin()
 
-    def _read(self) -> None:
+    def _read(self, fd: int) -> bytes | None:
+        """A chunk, or None when there is nothing yet; b"" at the end (then closed)."""
         try:
-            chunk = os.read(self.stdout_fd, _READ_SIZE)
+            chunk = os.read(fd, _READ_SIZE)
         except (BlockingIOError, InterruptedError):
-            return
+            return None
         except OSError:
             chunk = b""
         if not chunk:
-            self._close_stdout()
+            self._close_output(fd)
+        return chunk
+
+    def _read_stdout(self) -> None:
+        chunk = self._read(self.stdout_fd)
+        if not chunk:
             return
         room = self.output_cap - len(self.output)
         if len(chunk) > room:
             self.output += chunk[:room]
             self.cap_exceeded = True
-            self._close_stdout()
+            self._close_output(self.stdout_fd)
             return
         self.output += chunk
 
-    def _close_stdout(self) -> None:
-        if self.stdout_open:
-            self.selector.unregister(self.stdout_fd)
-            self.stdout_open = False
+    def _read_stderr(self) -> None:
+        chunk = self._read(self.stderr_fd)
+        if chunk:
+            self.stderr.take(chunk)
+
+    def _close_output(self, fd: int) -> None:
+        if fd in self.open_outputs:
+            self.selector.unregister(fd)
+            self.open_outputs.discard(fd)
 
     def close(self) -> None:
         self.close_stdin()
+        self.stderr.finish()
         self.selector.close()
         self.process.stdout.close()
+        self.process.stderr.close()
+
+
+class _StderrSink:
+    """Passes the planner's stderr on to our fd 2: the first ``cap`` bytes of it, in
+    pieces a pipe takes without blocking, so a reader of ours that stalls cannot
+    stall the loop; past the cap the bytes are counted, and one line says so."""
+
+    def __init__(self, cap: int, fd: int = 2):
+        self.cap = cap
+        self.fd = fd
+        self.total = 0
+        self.pending = bytearray()  # passed on, not yet written: at most ``cap`` bytes
+        self.last_byte = b"\n"
+        try:
+            os.fstat(fd)
+            self.broken = False
+        except OSError:  # our stderr is closed: drop it all
+            self.broken = True
+
+    def take(self, chunk: bytes) -> None:
+        room = self.cap - self.total
+        self.total += len(chunk)
+        if room > 0 and not self.broken:
+            self.pending += chunk[:room]
+
+    def watch(self, selector: selectors.BaseSelector) -> None:
+        """Ask ``selector`` for writability of our stderr while there is something to write."""
+        registered = self.fd in selector.get_map()
+        if self.pending and not self.broken and not registered:
+            selector.register(self.fd, selectors.EVENT_WRITE)
+        elif registered and (not self.pending or self.broken):
+            selector.unregister(self.fd)
+
+    def write_some(self) -> None:
+        if self.broken or not self.pending:
+            return
+        try:
+            written = os.write(self.fd, self.pending[:_STDERR_WRITE])
+        except (BlockingIOError, InterruptedError):
+            return
+        except OSError:  # EPIPE, EBADF: nobody reads our stderr any more
+            self.broken = True
+            self.pending.clear()
+            return
+        self.last_byte = bytes(self.pending[written - 1:written]) or self.last_byte
+        del self.pending[:written]
+
+    def finish(self) -> None:
+        """Write what is pending and, if it was cut, the notice; give up after
+        _STDERR_FLUSH_TIME on a reader that does not read."""
+        if self.total > self.cap and not self.broken:
+            self.pending += (b"" if (self.pending[-1:] or self.last_byte) == b"\n" else b"\n")
+            self.pending += (f"rrt-validator: the planner wrote {self.total} bytes on stderr; "
+                             f"only the first {self.cap} were passed on\n").encode()
+        if not self.pending or self.broken:
+            return
+        with selectors.PollSelector() if hasattr(selectors, "PollSelector") \
+                else selectors.DefaultSelector() as selector:
+            selector.register(self.fd, selectors.EVENT_WRITE)
+            deadline = time.monotonic() + _STDERR_FLUSH_TIME
+            while self.pending and not self.broken and time.monotonic() < deadline:
+                if selector.select(timeout=max(0.0, deadline - time.monotonic())):
+                    self.write_some()
+
+
+class _Containment:
+    """Makes the caller a child subreaper while the planner runs, gives the planner a
+    parent-death signal, and kills what the planner left behind (see the module's
+    docstring). Does nothing where prctl or /proc is missing."""
+
+    def __init__(self) -> None:
+        self.parent = os.getpid()
+        self.prctl = _load_prctl()
+        self.planner: int | None = None
+        self.since = 0  # the planner's start time, in clock ticks since boot
+        table = _proc_table()
+        self.before = frozenset(pid for pid, (ppid, _, _) in (table or {}).items()
+                                if ppid == self.parent)
+        self.was_subreaper = _get_subreaper(self.prctl)
+        if self.prctl is not None and not self.was_subreaper:
+            self.prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
+
+    def preexec(self) -> Callable[[], None] | None:
+        """For Popen's ``preexec_fn``: SIGKILL the planner when its parent dies."""
+        prctl, parent = self.prctl, self.parent
+        if prctl is None:
+            return None
+
+        def set_parent_death_signal() -> None:
+            prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+            if os.getppid() != parent:  # the parent died before the prctl took effect
+                os.kill(os.getpid(), signal.SIGKILL)
+        return set_parent_death_signal
+
+    def started(self, pid: int) -> None:
+        self.planner = pid
+        stat = _read_stat(pid)
+        self.since = stat[1] if stat is not None else 0
+
+    def sweep(self) -> None:
+        """SIGKILL every process descended from the planner, in its group or not, and
+        reap those re-parented to us; again until none is left (or _SWEEP_TIME)."""
+        deadline = time.monotonic() + _SWEEP_TIME
+        while True:
+            table = _proc_table()
+            if table is None:
+                return
+            found = _descendants(table, self.parent, self.before, self.since)
+            for pid in found:
+                if table[pid][2] != b"Z":
+                    _kill(pid)
+            for pid in found:
+                if table[pid][0] == self.parent and pid != self.planner:
+                    _reap(pid)
+            if not found or time.monotonic() >= deadline:
+                return
+            time.sleep(0.002)
+
+    def close(self) -> None:
+        if self.prctl is not None and not self.was_subreaper:
+            self.prctl(_PR_SET_CHILD_SUBREAPER, 0, 0, 0, 0)
+
+
+def _load_prctl() -> Callable[..., int] | None:
+    """libc's prctl (Linux), or None."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        import ctypes
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+    except (ImportError, OSError, AttributeError):
+        return None
+    prctl.argtypes = [ctypes.c_int] + [ctypes.c_ulong] * 4
+    prctl.restype = ctypes.c_int
+    return prctl
+
+
+def _get_subreaper(prctl: Callable[..., int] | None) -> bool:
+    if prctl is None:
+        return False
+    import ctypes
+    value = ctypes.c_int(0)
+    if prctl(_PR_GET_CHILD_SUBREAPER, ctypes.addressof(value), 0, 0, 0) != 0:
+        return False
+    return bool(value.value)
+
+
+def _read_stat(pid: int) -> tuple[int, int, bytes] | None:
+    """(parent pid, start time in clock ticks, state letter) from /proc/PID/stat."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as stat:
+            data = stat.read()
+    except OSError:
+        return None
+    fields = data[data.rfind(b")") + 2:].split()  # the name may hold spaces and ')'
+    try:
+        return int(fields[1]), int(fields[19]), fields[0]
+    except (IndexError, ValueError):
+        return None
+
+
+def _proc_table() -> dict[int, tuple[int, int, bytes]] | None:
+    """Every process's ``_read_stat``, by pid; None without /proc."""
+    try:
+        names = os.listdir("/proc")
+    except OSError:
+        return None
+    table = {}
+    for name in names:
+        if name.isdigit():
+            stat = _read_stat(int(name))
+            if stat is not None:
+                table[int(name)] = stat
+    return table
+
+
+def _descendants(table: dict[int, tuple[int, int, bytes]], root: int,
+                 skip: frozenset[int], since: int) -> list[int]:
+    """Processes below ``root`` that started at ``since`` or later, not below ``skip``."""
+    children: dict[int, list[int]] = {}
+    for pid, (ppid, _, _) in table.items():
+        children.setdefault(ppid, []).append(pid)
+    found, stack = [], [root]
+    while stack:
+        for pid in children.get(stack.pop(), ()):
+            if pid not in skip and table[pid][1] >= since and pid != root:
+                found.append(pid)
+                stack.append(pid)
+    return found
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def _reap(pid: int) -> None:
+    try:
+        os.waitpid(pid, os.WNOHANG)
+    except ChildProcessError:
+        pass  # not ours (any more), or already reaped

@@ -13,6 +13,12 @@ SYSTEM_MODULES = {
     "point": "planning_core.systems.point",
     "spaceship": "planning_core.systems.spaceship",
     "left": "planning_core.systems.left_spaceship",
+    "pendulum": "planning_core.systems.pendulum",
+    "car2": "planning_core.systems.car2",
+    "unicycle": "planning_core.systems.unicycle",
+    "car1": "planning_core.systems.car1",
+    "arm2": "planning_core.systems.arm2",
+    "rigid2": "planning_core.systems.rigid2",
 }
 
 

@@ -12,7 +12,8 @@ pytest.importorskip("ompl")
 from benchmarks import catalog, ompl_adapters  # noqa: E402
 from benchmarks.harness import RunSpec, run_one  # noqa: E402
 from planning_core.problem_text import parse_problem  # noqa: E402
-from planning_core.vehicles import Vehicle, spaceship  # noqa: E402
+from planning_core.systems import spaceship  # noqa: E402
+from planning_core.vehicles import Vehicle  # noqa: E402
 from validator.checks import validate_output  # noqa: E402
 
 PROBLEMS = Path(catalog.ROOT) / "benchmarks" / "problems"
@@ -48,7 +49,7 @@ def test_peer_planner_answers_pass_the_validator(vehicle, planner, name):
         rows = [tuple(map(float, line.split()))
                 for line in done.stdout.decode().splitlines()[1:report.trajectory_count + 1]]
         for before, after in zip(rows, rows[1:]):
-            assert spaceship.propagate(before[:4], before[4:]) == after[:4]
+            assert spaceship.SYSTEM.propagate(before[:4], before[4:]) == after[:4]
         if vehicle is Vehicle.LEFT_SPACESHIP:
             assert all(0.0 <= row[4] <= 3.141592653589793 for row in rows)
     # The same seed gives the same output, byte for byte.

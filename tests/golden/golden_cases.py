@@ -42,8 +42,9 @@ def argv(vehicle: str, planner: str, seed: int) -> list[str]:
             "-time", "100000"]
 
 
-# Runs over a second each (measured when golden.json was made): marked slow, so the
-# unit run (-m "not slow") replays the other ~170 and CI replays all.
+# Runs over a second each (measured when golden.json was made): marked slow, as is
+# every run with the second seed (test_golden.py), so the unit run (-m "not slow")
+# replays ~85 (the first seed) and CI replays all.
 SLOW = {
     "left/rrt/maze-20.sw/1", "left/rrt/maze-20.sw/2", "left/rrt/space-3.sw/1",
     "left/rrt/space-3.sw/2", "left/rrt/random-d20-20.sw/1", "left/rrt/random-d20-20.sw/2",

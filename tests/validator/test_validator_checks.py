@@ -9,7 +9,8 @@ import pytest
 
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
-from planning_core.vehicles import Vehicle, spaceship
+from planning_core.systems import spaceship
+from planning_core.vehicles import Vehicle
 from validator import checks
 from validator.checks import Limits, validate_output
 
@@ -26,7 +27,7 @@ def fly(start, controls):
     rows = []
     for control in controls:
         rows.append(state + tuple(control))
-        state = spaceship.propagate(state, control)
+        state = spaceship.SYSTEM.propagate(state, control)
     return rows, state
 
 
@@ -99,7 +100,7 @@ def test_spaceship_path_length_follows_the_slices():
     report = validate_output(ship_problem(end), Vehicle.SPACESHIP, format_plan(rows, []))
     points = [(1.0, 1.5)]
     for row in rows:
-        points += [(s[0], s[1]) for s in spaceship.slice_states(row[:4], row[4:])]
+        points += [(s[0], s[1]) for s in spaceship.SYSTEM.slice_states(row[:4], row[4:])]
     expected = sum(math.dist(a, b) for a, b in zip(points, points[1:]))
     assert report.path_length == pytest.approx(expected, rel=1e-12)
     assert report.final_state == end

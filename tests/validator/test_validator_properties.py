@@ -8,6 +8,7 @@ import random
 import subprocess
 import sys
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -93,6 +94,7 @@ VEHICLE_FLAGS = {Vehicle.POINT: [], Vehicle.SPACESHIP: ["-grad"],
                  Vehicle.LEFT_SPACESHIP: ["-grad", "-left"]}
 
 
+@pytest.mark.slow  # 24 planner processes of up to 1.5 s each
 @settings(max_examples=24, deadline=None)
 @given(problem=grid_problems(), seed=st.integers(0, 2 ** 31),
        vehicle=st.sampled_from(VEHICLES))

@@ -21,7 +21,7 @@ ROOT = HERE.parents[2]
 sys.path.insert(0, str(ROOT))
 
 from planning_core.plan_text import format_plan  # noqa: E402
-from planning_core.vehicles import spaceship  # noqa: E402
+from planning_core.systems import spaceship  # noqa: E402
 
 PROBLEMS = HERE / "problems"
 OUTPUTS = HERE / "outputs"
@@ -61,7 +61,7 @@ def fly(start: tuple[float, float], controls: list[tuple[float, float]]):
     rows = []
     for control in controls:
         rows.append(state + control)
-        state = spaceship.propagate(state, control)
+        state = spaceship.SYSTEM.propagate(state, control)
     return rows, state
 
 

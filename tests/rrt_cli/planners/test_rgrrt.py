@@ -16,8 +16,8 @@ from planning_core.space_information import grid_space_information
 from planning_core.systems import spaceship
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rgrrt
-from tests.planners import ship_planner_testlib
-from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_50, SHIPS, ZIGZAG
+from tests.rrt_cli.planners import ship_planner_testlib
+from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_50, SHIPS, ZIGZAG
 
 
 def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,

@@ -88,7 +88,10 @@ def test_frontier_share_outside_0_1_is_refused(share):
         rrtconnect.Params(frontier_targets=share)
 
 
-@pytest.mark.parametrize("params", [rrtconnect.Params(), PUBLISHED], ids=["frontier", "uniform"])
+# The published (uniform) variant's 7 seeds take seconds: marked slow.
+@pytest.mark.parametrize("params", [rrtconnect.Params(),
+                                    pytest.param(PUBLISHED, marks=pytest.mark.slow)],
+                         ids=["frontier", "uniform"])
 def test_grows_fewer_nodes_than_rrt_on_a_maze(params):
     # Node counts are deterministic per seed, so this is not a timing test.
     problem = maze(21, random.Random(7))

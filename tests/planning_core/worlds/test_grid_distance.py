@@ -3,9 +3,9 @@
 import math
 import random
 
-from planning_core.cell_distance import CellDistanceToGoal
 from planning_core.problem_text import parse_problem
-from planning_core.world import connected_free_cells
+from planning_core.worlds.grid import connected_free_cells
+from planning_core.worlds.grid_distance import CellDistanceToGoal
 
 
 def problem(rows: list[str], start, goal):

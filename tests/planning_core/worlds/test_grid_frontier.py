@@ -1,10 +1,10 @@
-"""The trees' frontier on the grid (rrt_cli.planners.frontier): which cells it
+"""The trees' frontier on the grid (planning_core.worlds.grid_frontier): which cells it
 holds as nodes are added, and that its samples lie in those cells."""
 
 import random
 
 from planning_core.problem import Problem
-from rrt_cli.planners.frontier import FrontierCells
+from planning_core.worlds.grid_frontier import FrontierCells
 
 # 4 x 3, row 0 at the bottom; '#' blocked:
 #   row 2:  . . . .

@@ -11,8 +11,8 @@ import pytest
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import kpiece
 from tests.conftest import COURSE_PROBLEMS
-from tests.planners import ship_planner_testlib
-from tests.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_50, ZIGZAG
+from tests.rrt_cli.planners import ship_planner_testlib
+from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_50, ZIGZAG
 
 
 def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,
@@ -41,6 +41,7 @@ def test_position_only_projection_and_set_cell_size_are_valid():
     solve_and_validate(MAZE_20, Vehicle.LEFT_SPACESHIP, 0, params)
 
 
+@pytest.mark.slow  # a long run (seconds)
 def test_left_ship_through_the_50x50_maze():
     """The velocity in the projection is what gets the left-only ship round a
     maze's right turns (position-only: 106 s on seed 1, with it about 2 s)."""

@@ -6,7 +6,7 @@ import pytest
 
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
-from planning_core.world import GridWorld, connected_free_cells, segment_meets_cell
+from planning_core.worlds.grid import GridWorld, connected_free_cells, segment_meets_cell
 
 SPACE0 = "4\n3\n____\n__#_\n___#\n0.1\n1.54\n3.8\n1.1\n"
 

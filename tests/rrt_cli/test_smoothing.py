@@ -12,7 +12,7 @@ from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
-from planning_core.world import GridWorld
+from planning_core.worlds.grid import GridWorld
 from rrt_cli.planners import rrt, rrtconnect
 from rrt_cli.planners.base import StopCondition
 from rrt_cli.planners.point_common import first_blocked_segment, path_length

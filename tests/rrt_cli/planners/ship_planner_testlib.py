@@ -55,7 +55,7 @@ _____
 
 # The suite's 20x20 maze (1-cell corridors): the straight line to the goal
 # misleads there, which the default goal_distance="cells" is for.
-PROBLEMS_DIR = Path(__file__).resolve().parents[2] / "benchmarks" / "problems"
+PROBLEMS_DIR = Path(__file__).resolve().parents[3] / "benchmarks" / "problems"
 MAZE_20 = (PROBLEMS_DIR / "maze-20.sw").read_text()
 MAZE_50 = (PROBLEMS_DIR / "maze-50.sw").read_text()
 
