@@ -5,7 +5,9 @@ where does a control lead while every slice stays valid, what is free between
 two states, where to sample. What only some worlds can answer (distance along a
 grid's free cells, the frontier of a tree, a proof that the goal is cut off) is
 a capability: a method that answers None when the world does not offer it, so a
-planner never branches on which vehicle it is planning for.
+planner never branches on which vehicle it is planning for. A capability that
+may walk every cell of a big map takes an optional ``stop`` and raises
+:class:`~planning_core.interrupt.Interrupted` when it says the time is up.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import random
 from typing import Sequence
 
 from planning_core.goal import GoalRegion
+from planning_core.interrupt import Stop
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
@@ -63,17 +66,17 @@ class SpaceInformation:
         return self.system.sample_control(rng)
 
     # -- capabilities of the world (None where it has none) ------------------------
-    def goal_certainly_unreachable(self) -> bool:
+    def goal_certainly_unreachable(self, stop: Stop = None) -> bool:
         """True only when it is proved: a geometric system whose start and goal no
         chain of free cells joins. Kinodynamic systems are checked only at slice
         positions and may legally hop a thin wall, so for them it is never proved."""
         if self.system.kinodynamic:
             return False
-        return self.world.certainly_disconnected(self.start, self.goal.point)
+        return self.world.certainly_disconnected(self.start, self.goal.point, stop)
 
-    def distance_along_free_space(self):
+    def distance_along_free_space(self, stop: Stop = None):
         """Position -> distance to the goal along free space, or None."""
-        return self.world.distance_along_cells()
+        return self.world.distance_along_cells(stop)
 
 
 def grid_space_information(problem: Problem, system_name) -> SpaceInformation:

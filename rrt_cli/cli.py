@@ -18,7 +18,7 @@ from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags,
 from planning_core.plan_text import format_plan
 from planning_core.space_information import grid_space_information
 from rrt_cli.planners import PLANNERS
-from rrt_cli.planners.base import StopCondition
+from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopCondition
 from rrt_cli.smoothing import smooth_path
 
 EXIT_SOLVED = 0
@@ -85,6 +85,10 @@ def main(argv: list[str] | None = None) -> int:
             f"planner={args.planner} vehicle={vehicle.value} seed={run_seed} "
             f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
             f"planning_seconds={stats.planning_seconds:.6f}")
+    if result.status is PlanStatus.OUT_OF_MEMORY:
+        say(f"rrt_cli: out of memory: {result.message} (after "
+            f"{stats.planning_seconds:.2f} s, seed {run_seed})")
+        return EXIT_NO_SOLUTION
     if not result.solved:
         detail = f": {result.message}" if result.message else ""
         say(f"rrt_cli: no solution ({result.status.value}{detail}) after "
@@ -105,6 +109,9 @@ def entry_point() -> None:
         status = main()
     except KeyboardInterrupt:
         status = 130
+    except MemoryError:  # reading a huge problem, or printing a huge answer
+        say(f"rrt_cli: out of memory: {OUT_OF_MEMORY_MESSAGE}")
+        status = EXIT_NO_SOLUTION
     except SystemExit as done:  # -h, or a usage error
         status = done.code
     if status == EXIT_SOLVED and write_stdout("") is not None:  # e.g. -h into a full stdout

@@ -17,12 +17,17 @@ from __future__ import annotations
 
 import math
 import random
+from array import array
 from dataclasses import dataclass
 from typing import Sequence
 
+from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
 
 SAMPLE_STEP = 0.05
+LIST_MAX_CELLS = 1 << 20
+"""Maps up to this many cells keep their cells as a list, which the hot loops index
+a few percent faster than bytes (8 bytes a cell); larger maps share the problem's bytes."""
 
 
 @dataclass(frozen=True)
@@ -41,8 +46,8 @@ class GridWorld:
         self.problem = problem
         self.width = problem.width
         self.height = problem.height
-        # A list indexes faster than bytes in CPython's inner loops.
-        self.blocked = list(problem.blocked)
+        blocked = problem.blocked
+        self.blocked = list(blocked) if len(blocked) <= LIST_MAX_CELLS else blocked
 
     def point_free(self, x: float, y: float) -> bool:
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
@@ -62,21 +67,25 @@ class GridWorld:
             if x > 0.0 and y > 0.0:
                 return x, y
 
-    def free_cell_indices(self) -> list[int]:
-        """Row-major indices (``row * width + column``) of every free cell."""
-        return [index for index, blocked in enumerate(self.problem.blocked) if not blocked]
+    def free_cell_indices(self, stop: Stop = None):
+        """Row-major indices (``row * width + column``) of every free cell, in
+        increasing order, as a sequence that is not listed
+        (:class:`~planning_core.worlds.grid_cells.FreeCells`)."""
+        from planning_core.worlds.grid_cells import FreeCells
+        return FreeCells(self.problem.blocked, stop)
 
-    def certainly_disconnected(self, a: Sequence[float], b: Sequence[float]) -> bool:
+    def certainly_disconnected(self, a: Sequence[float], b: Sequence[float],
+                               stop: Stop = None) -> bool:
         """No 8-connected chain of free cells joins the cells of positions a and b
         (an over-approximation of where a point moving straight can go)."""
-        reach = connected_free_cells(self.problem, (int(a[0]), int(a[1])), diagonal=True)
-        return not reach[int(b[1]) * self.width + int(b[0])]
+        return not cells_joined(self.problem, (int(a[0]), int(a[1])), (int(b[0]), int(b[1])),
+                                diagonal=True, stop=stop)
 
-    def distance_along_cells(self):
+    def distance_along_cells(self, stop: Stop = None):
         """Position -> distance to the problem's goal along the free cells (a
         heuristic; :class:`~planning_core.worlds.grid_distance.CellDistanceToGoal`)."""
         from planning_core.worlds.grid_distance import CellDistanceToGoal
-        return CellDistanceToGoal(self.problem)
+        return CellDistanceToGoal(self.problem, stop=stop)
 
     def frontier(self):
         """An empty :class:`~planning_core.worlds.grid_frontier.FrontierCells` of this map."""
@@ -166,13 +175,22 @@ def segment_meets_cell(x0: float, y0: float, x1: float, y1: float,
     return None
 
 
+_SIDE_STEPS = ((1, 0), (-1, 0), (0, 1), (0, -1))
+_CORNER_STEPS = ((1, 1), (1, -1), (-1, 1), (-1, -1))
+
+
+def _steps(diagonal: bool) -> tuple[tuple[int, int], ...]:
+    return _SIDE_STEPS + _CORNER_STEPS if diagonal else _SIDE_STEPS
+
+
 def connected_free_cells(problem: Problem, start_cell: tuple[int, int],
-                         diagonal: bool) -> bytearray:
+                         diagonal: bool, stop: Stop = None) -> bytearray:
     """Flood fill of free cells from ``start_cell``: 1 where reachable.
 
     With ``diagonal`` cells touching only at a corner count as connected: an
     over-approximation of where a point can move, so a goal outside the fill is
-    certainly unreachable.
+    certainly unreachable. ``stop`` is asked every POLL_EVERY cells
+    (:mod:`planning_core.interrupt`).
     """
     width, height, blocked = problem.width, problem.height, problem.blocked
     seen = bytearray(width * height)
@@ -181,11 +199,14 @@ def connected_free_cells(problem: Problem, start_cell: tuple[int, int],
     if blocked[first]:
         return seen
     seen[first] = 1
-    frontier = [first]
-    steps = [(1, 0), (-1, 0), (0, 1), (0, -1)]
-    if diagonal:
-        steps += [(1, 1), (1, -1), (-1, 1), (-1, -1)]
+    frontier = array("i", [first])  # 4 bytes a cell, not a list's 36
+    steps = _steps(diagonal)
+    countdown = POLL_EVERY
     while frontier:
+        countdown -= 1
+        if not countdown:
+            countdown = POLL_EVERY
+            check(stop)
         index = frontier.pop()
         row, col = divmod(index, width)
         for dc, dr in steps:
@@ -196,3 +217,58 @@ def connected_free_cells(problem: Problem, start_cell: tuple[int, int],
                     seen[k] = 1
                     frontier.append(k)
     return seen
+
+
+def _toward_orders(steps) -> dict[tuple[int, int], tuple[tuple[int, int], ...]]:
+    """For each sign pair (sx, sy) of the way to a target, the steps from the
+    one leading farthest away to the one leading most toward it."""
+    return {(sx, sy): tuple(sorted(steps, key=lambda step: step[0] * sx + step[1] * sy))
+            for sx in (-1, 0, 1) for sy in (-1, 0, 1)}
+
+
+_TOWARD = {diagonal: _toward_orders(_steps(diagonal)) for diagonal in (False, True)}
+
+
+def cells_joined(problem: Problem, a_cell: tuple[int, int], b_cell: tuple[int, int],
+                 diagonal: bool, stop: Stop = None) -> bool:
+    """Whether a chain of free cells joins ``a_cell`` and ``b_cell`` (the
+    neighbours of :func:`connected_free_cells`).
+
+    Two fills, one from each cell, take turns one cell at a time, each depth
+    first and trying first the step toward the other's cell. The first to touch
+    a cell the other has filled proves a chain; the first with nothing left to
+    fill proves there is none. So a goal walled into a small room is found out
+    after about that room's cells, and an open map after about the cells of one
+    chain, where one full fill would visit every cell joined to the start.
+    """
+    width, height, blocked = problem.width, problem.height, problem.blocked
+    a = a_cell[1] * width + a_cell[0]
+    b = b_cell[1] * width + b_cell[0]
+    if blocked[a] or blocked[b]:
+        return False
+    if a == b:
+        return True
+    mark = bytearray(width * height)  # 1: filled from a, 2: from b
+    mark[a], mark[b] = 1, 2
+    orders = _TOWARD[diagonal]
+    sides = ((array("i", [a]), b_cell, 1, 2), (array("i", [b]), a_cell, 2, 1))
+    countdown = POLL_EVERY
+    while True:
+        countdown -= 1
+        if not countdown:
+            countdown = POLL_EVERY
+            check(stop)
+        for stack, (tc, tr), own, other in sides:
+            if not stack:
+                return False
+            row, col = divmod(stack.pop(), width)
+            for dc, dr in orders[(tc > col) - (tc < col), (tr > row) - (tr < row)]:
+                c, r = col + dc, row + dr
+                if 0 <= c < width and 0 <= r < height:
+                    k = r * width + c
+                    filled = mark[k]
+                    if filled == other:
+                        return True
+                    if not filled and not blocked[k]:
+                        mark[k] = own
+                        stack.append(k)

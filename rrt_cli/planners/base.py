@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 from enum import Enum
+
+from planning_core.interrupt import Interrupted
 
 
 class PlanStatus(Enum):
@@ -12,13 +15,16 @@ class PlanStatus(Enum):
     TIME_LIMIT = "time limit reached"
     ITERATION_LIMIT = "iteration limit reached"
     UNREACHABLE = "goal unreachable"
+    OUT_OF_MEMORY = "out of memory"
 
 
 @dataclass
 class StopCondition:
     """Ends a search after ``time_limit`` seconds or ``max_iterations`` iterations.
 
-    The clock starts when the condition is made.
+    The clock starts when the condition is made, and covers the planner's
+    set-up too: long set-up loops ask :meth:`time_is_up` (the iteration limit
+    counts search iterations only, so ``-iterations N`` stays reproducible).
     """
 
     time_limit: float = 30.0
@@ -36,6 +42,10 @@ class StopCondition:
         if time.perf_counter() >= self.deadline:
             return PlanStatus.TIME_LIMIT
         return None
+
+    def time_is_up(self) -> bool:
+        """The ``stop`` a world's long computation takes (planning_core.interrupt)."""
+        return time.perf_counter() >= self.deadline
 
 
 @dataclass(frozen=True)
@@ -82,3 +92,28 @@ class PlanResult:
         """The output's tree rows (SPEC 2)."""
         from planning_core.plan_rows import tree_rows
         return tree_rows(self.system, self.edges)
+
+
+SETUP_CUT_SHORT = "during set-up"
+OUT_OF_MEMORY_MESSAGE = "the run needs more memory than it may have"
+
+
+def guarded(solve):
+    """A planner's ``solve`` that ends as a result, never as a traceback, when a
+    world's set-up is cut short by the time limit (:class:`Interrupted`:
+    TIME_LIMIT) or memory runs out (OUT_OF_MEMORY). Either result has no path
+    and no edges, 0 iterations and nodes, and the seconds since ``stop`` began."""
+
+    @functools.wraps(solve)
+    def run(si, stop: StopCondition, rng, *params, **named) -> PlanResult:
+        try:
+            return solve(si, stop, rng, *params, **named)
+        except Interrupted:
+            status, message = PlanStatus.TIME_LIMIT, SETUP_CUT_SHORT
+        except MemoryError:
+            # What failed to fit was the call's: it is gone now, and this is small.
+            status, message = PlanStatus.OUT_OF_MEMORY, OUT_OF_MEMORY_MESSAGE
+        stats = PlanStats(0, 0, time.perf_counter() - stop.started)
+        return PlanResult(status, si.system, (), (), (), stats, message)
+
+    return run

@@ -33,7 +33,7 @@ grid cell, the motions that end in it. Each iteration:
 The output format holds one control for exactly one step per tree edge (SPEC 2),
 so a motion of ``k`` steps becomes ``k`` chained tree nodes, each filed in the
 cell of its own state (OMPL splits motions at cell boundaries to the same end).
-A node within ``goal_tolerance`` of the goal ends the search.
+A node in the goal region ends the search.
 
 The second departure: "distance to goal" (cell scores, close motions, goal
 steering) is by default measured along the free cells of the map
@@ -54,8 +54,9 @@ import random
 import sys
 from dataclasses import dataclass
 
+from planning_core.interrupt import Stop
 from planning_core.space_information import SpaceInformation
-from rrt_cli.planners.base import PlanResult, StopCondition
+from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
@@ -251,7 +252,8 @@ def _bisect(items: list, item) -> int:
 class _Search:
     """One KPIECE1 run: the tree, the projection grid and the close-to-goal motions."""
 
-    def __init__(self, si: SpaceInformation, rng: random.Random, params: KPIECEParams):
+    def __init__(self, si: SpaceInformation, rng: random.Random, params: KPIECEParams,
+                 stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
         world = si.world
         cell_size = params.cell_size or derived_cell_size(world.width, world.height)
@@ -261,7 +263,7 @@ class _Search:
         self.tree = MotionTree(si.start)
         self.node_cells: list[_Cell] = []
         self.iteration = 1
-        along = si.distance_along_free_space() if params.goal_distance == "cells" else None
+        along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
         self.goal_distance = ((lambda state: along(state[0], state[1])) if along is not None
                               else si.goal.distance)
 
@@ -364,9 +366,10 @@ class _Search:
         return None
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: KPIECEParams = KPIECEParams()) -> PlanResult:
-    return run_tree_search(si, stop, lambda: _Search(si, rng, params), "KPIECE1")
+    return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "KPIECE1")
 
 
 def _projection(system, inverse_cell: float, velocity_cell_size: float | None):

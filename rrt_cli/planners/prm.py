@@ -32,7 +32,7 @@ from planning_core.worlds.grid import GridWorld
 from planning_core.worlds.grid_cells import sample_free_point
 from rrt_cli.graph_search import astar
 from planning_core.nearest.quadtree import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.point_common import first_blocked_segment, goal_vertex, path_length
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
@@ -163,11 +163,11 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
 
     if si.goal.reached(si.start):
         return result(PlanStatus.SOLVED, [START], 0)
-    if si.goal_certainly_unreachable():
+    if si.goal_certainly_unreachable(stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, None, 0,
                       "no chain of free cells joins the start and the goal")
 
-    free_cells = world.free_cell_indices()
+    free_cells = world.free_cell_indices(stop.time_is_up)
     width = world.width
     iterations = 0
     solution: list[int] | None = None
@@ -218,6 +218,7 @@ def _query(roadmap: Roadmap, world: GridWorld) -> list[int] | None:
         roadmap.remove_edge(path[bad], path[bad + 1])
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: PRMParams = PRMParams()) -> PlanResult:
     return plan_with_roadmap(si, stop, rng, lambda n: params.neighbors, params.min_vertices,

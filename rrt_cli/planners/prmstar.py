@@ -28,7 +28,7 @@ import random
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
-from rrt_cli.planners.base import PlanResult, StopCondition
+from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.prm import Refinement, plan_with_roadmap
 
 DIMENSION = 2
@@ -63,6 +63,7 @@ def star_neighbor_count(vertices: int, dimension: int = DIMENSION) -> int:
     return max(1, math.ceil(math.e * (1.0 + 1.0 / dimension) * math.log(vertices)))
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: PRMStarParams = PRMStarParams()) -> PlanResult:
     refinement = Refinement(params.growth_after_connection, params.min_improvement,

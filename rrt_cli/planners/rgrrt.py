@@ -28,7 +28,7 @@ twice: when the nearest reachable state is a used one, the search goes on from
 the node it became, to that node's reachable state closest to the target, with
 the same rejection rule (the quadtree has no deletion, and a used state sits
 exactly on its node, so the answer is almost always one level down). A node
-whose reachable set holds a state within ``goal_tolerance`` of the goal ends the
+whose reachable set holds a state in the goal region ends the
 search at once.
 
 One departure from the paper, on by default (``RGRRTParams.goal_distance``):
@@ -55,9 +55,10 @@ import math
 import random
 from dataclasses import dataclass
 
-from planning_core.space_information import SpaceInformation
+from planning_core.interrupt import Stop
 from planning_core.nearest.quadtree import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, StopCondition
+from planning_core.space_information import SpaceInformation
+from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 
@@ -145,13 +146,14 @@ class _ReachableSets:
 class _Search:
     """One RG-RRT run: the tree, the reachable sets and the best-first queue."""
 
-    def __init__(self, si: SpaceInformation, rng: random.Random, params: RGRRTParams):
+    def __init__(self, si: SpaceInformation, rng: random.Random, params: RGRRTParams,
+                 stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
         self.fixed_controls = si.system.reachable_controls(params.angles, params.thrusts)
         self.tree = MotionTree(si.start)
         self.reach = _ReachableSets(si.world.width, si.world.height)
         self.iterations = 0
-        along = si.distance_along_free_space() if params.goal_distance == "cells" else None
+        along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
         self.guided = along is not None
         # Every reachable state by its distance to the goal; used ones are skipped
         # when they come to the top.
@@ -243,9 +245,10 @@ class _Search:
         return self.take(chosen) if chosen >= 0 else None
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RGRRTParams = RGRRTParams()) -> PlanResult:
-    return run_tree_search(si, stop, lambda: _Search(si, rng, params), "RG-RRT")
+    return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "RG-RRT")
 
 
 # Ranks a braking line that meets a blocked cell after every free one (well below

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
 from planning_core.nearest.quadtree import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition
+from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
+from rrt_cli.planners.point_common import goal_vertex
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree
 
@@ -26,8 +27,6 @@ from rrt_cli.planners.tree import MotionTree
 class RRTParams:
     goal_bias: float = 0.05
     """Probability that the random target is the goal (SPEC 2: 0.05)."""
-    goal_tolerance: float = 0.1
-    """A node within this distance of the goal point solves the problem."""
     controls_per_extension: int = 10
     """Kinodynamic systems: random controls tried per extension; the closest valid one wins."""
     partial_extension: bool = True
@@ -42,6 +41,7 @@ class RRTParams:
     the targets behind it; docs/parameter-history.md)."""
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
     began = time.perf_counter()
@@ -54,10 +54,13 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
 
     if goal.reached(si.start):
         return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
-    if si.goal_certainly_unreachable():
+    if si.goal_certainly_unreachable(stop.time_is_up):
         return tree.result(system, PlanStatus.UNREACHABLE, None, 0, began,
                            "no chain of free cells joins the start and the goal")
 
+    # The goal itself, unless it lies on the map's left or bottom edge: a node
+    # there could not be printed (points print strictly inside the map).
+    goal_target = goal_vertex(si.world, goal.point)
     iterations = 0
     while True:
         limit = stop.status(iterations)
@@ -65,7 +68,7 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
         if rng.random() < params.goal_bias:
-            target = goal.point
+            target = goal_target
         else:
             target = si.sample_target(rng)
         near = index.nearest(*target)

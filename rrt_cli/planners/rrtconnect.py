@@ -36,7 +36,7 @@ from planning_core.space_information import SpaceInformation
 from planning_core.worlds.grid_cells import sample_free_point
 from planning_core.worlds.grid_frontier import FrontierCells
 from planning_core.nearest.quadtree import QuadtreeNearest
-from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.point_common import goal_vertex
 from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree
@@ -134,10 +134,10 @@ class _Grower:
 
 
 def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
-                    frontier: FrontierCells | None):
+                    frontier: FrontierCells | None, stop: StopCondition):
     """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
     if params.free_space_targets:
-        free_cells, width = si.world.free_cell_indices(), si.world.width
+        free_cells, width = si.world.free_cell_indices(stop.time_is_up), si.world.width
 
         def draw_uniform_target():
             return sample_free_point(rng, free_cells, width)
@@ -157,6 +157,7 @@ def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.
     return draw_target
 
 
+@guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
     if si.system.kinodynamic:
@@ -175,7 +176,7 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
 
     if si.goal.reached(start):
         return result(PlanStatus.SOLVED, [start], 0)
-    if si.goal_certainly_unreachable():
+    if si.goal_certainly_unreachable(stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, (), 0,
                       "no chain of free cells joins the start and the goal")
     frontier = si.world.frontier() if params.frontier_targets > 0.0 else None
@@ -183,7 +184,7 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
         frontier.cover(start)
         frontier.cover(goal)
     grower = _Grower(si, params, rng, frontier)
-    draw_target = _target_sampler(si, params, rng, frontier)
+    draw_target = _target_sampler(si, params, rng, frontier, stop)
     active, other = start_tree, goal_tree
     iterations = 0
     while True:

@@ -7,7 +7,7 @@ import pytest
 
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
-from tests.conftest import COURSE_DIR, ROOT, run_planner
+from tests.conftest import COURSE_DIR, ROOT, plan_in_process, run_planner
 from validator.checks import validate_output
 
 SPACE0 = (COURSE_DIR / "space-0.sw")
@@ -115,3 +115,18 @@ def test_start_within_goal_tolerance_is_a_one_line_trajectory():
         assert done.returncode == 0
         assert done.stdout.decode().splitlines()[0] == "1"
         assert validate_output(parse_problem(text), vehicle, done.stdout.decode()).valid
+
+
+BORDER_GOAL = "3\n3\n___\n___\n___\n1.5\n1.5\n0\n1.5\n"  # the goal on the map's left edge
+
+
+@pytest.mark.parametrize("planner", ["rrt", "rrtconnect", "prm", "prmstar"])
+def test_a_goal_on_the_maps_edge_gets_a_valid_answer(monkeypatch, planner):
+    """The reader accepts a goal at x = 0; every point planner must stop short of
+    the edge, since printed points lie strictly inside the map."""
+    for seed in range(1, 6):
+        status, out, err = plan_in_process(monkeypatch, ["-planner", planner, "-seed", str(seed)],
+                                           BORDER_GOAL)
+        assert status == 0, err
+        report = validate_output(parse_problem(BORDER_GOAL), Vehicle.POINT, out, strict=True)
+        assert report.valid, (seed, report.first_failure)
