@@ -1,24 +1,92 @@
 #!/usr/bin/env bash
-# Set up everything: a virtual environment in .venv with the project, its test
-# tools, the benchmark tools and (where a wheel exists) OMPL's Python bindings for
-# the side-by-side benchmarks. Idempotent; quiet on stdout (progress on stderr).
+# Set up by need, in a virtual environment .venv inside the checkout:
+#   ./make.sh            everything: the project with the validator's reportlab, the test and
+#                        benchmark tools, and OMPL's Python bindings where PyPI has a wheel
+#                        (OMPL is optional: the benchmarks and their tests skip it with a note)
+#   ./make.sh validator  the project and reportlab only: what the validator's PDF needs
+# The planner needs none of this (./run.sh runs on a bare python3). Idempotent. Quiet: one
+# progress line per step on stderr; pip's output goes to .venv/make.log, shown on failure.
+# PYTHON=/path/to/python3 picks the interpreter (default: python3 on PATH, 3.10 or newer).
 set -euo pipefail
 cd "$(dirname "$0")"
+
+case ${1:-all} in
+    all) target=all ;;
+    validator) target=validator ;;
+    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "make.sh: unknown target '$1' (use: ./make.sh [all | validator])" >&2; exit 2 ;;
+esac
 PYTHON=${PYTHON:-python3}
-if [ ! -x .venv/bin/python ]; then
-    echo "make.sh: creating .venv" >&2
-    "$PYTHON" -m venv .venv >&2
-fi
-stamp=.venv/.installed
-if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
-    echo "make.sh: installing the project, its test and benchmark tools into .venv" >&2
-    pip=(.venv/bin/python -m pip install --quiet --disable-pip-version-check)
-    "${pip[@]}" --upgrade pip >&2
-    "${pip[@]}" -e ".[test,bench]" >&2
-    # OMPL is optional (benchmarks and their tests skip it with a note): a platform
-    # without an ompl wheel still gets a working set-up.
-    if ! "${pip[@]}" -e ".[ompl]" >&2; then
-        echo "make.sh: note: ompl could not be installed; OMPL comparisons will be skipped" >&2
+LOG=.venv/make.log
+
+step() { echo "make.sh: $*" >&2; }
+
+# Runs "$@" with its output appended to the log; on failure shows the log's end, exits 1.
+quietly() {
+    if ! "$@" >>"$LOG" 2>&1; then
+        step "failed: $*"
+        echo "--- the last lines of $LOG:" >&2
+        tail -n 30 "$LOG" >&2
+        exit 1
     fi
-    touch "$stamp"
+}
+
+make_venv() {
+    if ! command -v "$PYTHON" >/dev/null 2>&1; then
+        step "needs $PYTHON (3.10 or newer) on PATH, or PYTHON=/path/to/python3"; exit 1
+    fi
+    if ! "$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 10))' 2>/dev/null; then
+        step "needs Python 3.10 or newer; $PYTHON is $("$PYTHON" -V 2>&1)"; exit 1
+    fi
+    step "creating .venv with $("$PYTHON" -V 2>&1)"
+    local out
+    if ! out=$("$PYTHON" -m venv .venv 2>&1); then
+        rm -rf .venv
+        step "failed: $PYTHON -m venv .venv"
+        echo "$out" >&2
+        exit 1
+    fi
+    echo "$out" >"$LOG"
+    # Editable installs from pyproject.toml need pip 21.3 or newer.
+    if ! .venv/bin/python -c 'import pip, sys
+sys.exit(tuple(int(p) for p in pip.__version__.split(".")[:2]) < (21, 3))' 2>/dev/null; then
+        step "upgrading pip"
+        quietly "${PIP[@]}" --upgrade pip
+    fi
+}
+
+# The console scripts rrt-planner and rrt-validator in .venv/bin become links to ./run.sh
+# and ./rrt-validator, which start faster (-S) than pip's. Removed before every pip run, so
+# that pip never writes through them.
+unlink_scripts() { rm -f .venv/bin/rrt-planner .venv/bin/rrt-validator; }
+link_scripts() {
+    unlink_scripts  # pip's own
+    ln -s ../../run.sh .venv/bin/rrt-planner
+    ln -s ../../rrt-validator .venv/bin/rrt-validator
+}
+
+PIP=(.venv/bin/python -m pip install --disable-pip-version-check --no-input)
+[ -x .venv/bin/python ] || make_venv
+
+# .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.
+stamp=.venv/.installed
+[ "$target" = validator ] && stamp=.venv/.installed-validator
+if [ -f "$stamp" ] && [ ! pyproject.toml -nt "$stamp" ]; then
+    exit 0
 fi
+unlink_scripts
+if [ "$target" = validator ]; then
+    step "installing the project and reportlab"
+    quietly "${PIP[@]}" -e .
+else
+    step "installing the project, reportlab, the test and benchmark tools"
+    quietly "${PIP[@]}" -e ".[test,bench]"
+    step "installing OMPL's Python bindings (optional)"
+    if ! "${PIP[@]}" -e ".[ompl]" >>"$LOG" 2>&1; then
+        step "note: ompl could not be installed (see $LOG); OMPL comparisons will be skipped"
+    fi
+    touch .venv/.installed-validator
+fi
+link_scripts
+touch "$stamp"
+step "ready"

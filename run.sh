@@ -1,8 +1,35 @@
-#!/usr/bin/env bash
+#!/bin/sh
 # Run the planner: ./run.sh [-grad] [-left] [options] < problem.sw
-# Sets up .venv first if it is missing. stdout carries only the answer.
-here="$(cd "$(dirname "$0")" && pwd)"
-if [ ! -x "$here/.venv/bin/python" ] || [ ! -f "$here/.venv/.installed" ]; then
-    "$here/make.sh" >&2 || exit 2
+#
+# Needs only python3 (3.10 or newer), no set-up: the planner uses the standard library
+# alone. It runs the interpreter ./make.sh set up (.venv) when there is one, else python3
+# from PATH, with -S -I: no site-packages and no PYTHON* variables, so nothing but the
+# standard library and this checkout is imported. Bytecode is cached under
+# ~/.cache/rrt-gridplan (XDG_CACHE_HOME), so the checkout is left as it was.
+# stdout carries only the answer.
+case $0 in */*) here=${0%/*} ;; *) here=. ;; esac
+if [ -L "$0" ]; then here=$(dirname "$(readlink -f "$0")"); fi
+
+cache=${XDG_CACHE_HOME:-${HOME:+$HOME/.cache}}
+case $cache in
+    /*) keep="-Xpycache_prefix=$cache/rrt-gridplan" ;;
+    *) keep=-B ;;  # no absolute cache folder: compile in memory, write nothing
+esac
+python=$here/.venv/bin/python
+if [ ! -x "$python" ]; then
+    python=python3
+    if ! command -v python3 >/dev/null 2>&1; then
+        echo "run.sh: needs python3 (3.10 or newer) on PATH" >&2
+        exit 127
+    fi
 fi
-exec "$here/.venv/bin/python" -m rrt_cli "$@"
+exec "$python" -S -I "$keep" -c '
+import os, sys
+if sys.version_info < (3, 10):
+    sys.stderr.write("run.sh: needs Python 3.10 or newer, %s is %s\n"
+                     % (sys.executable, sys.version.split()[0]))
+    sys.exit(127)
+sys.path.insert(0, os.path.abspath(sys.argv.pop(1)))
+from rrt_cli.cli import entry_point
+entry_point()
+' "$here" "$@"

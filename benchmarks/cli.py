@@ -11,7 +11,13 @@ Writes into ``--out`` (default ``benchmarks/results/<preset>``): ``runs.csv``
 Arena), and ``meta.json``. Progress goes to stderr; the path of the report is
 the only line on stdout.
 
-Exit status: 0 the runs completed (whatever they found), 2 bad usage.
+Ctrl-C or SIGTERM stops within a second: ``runs.csv`` (written row by row as
+runs finish) keeps the finished runs, and the report is made from them (without
+the shortest-path yardstick and the plots, which take seconds; ``--report-only``
+adds them later).
+
+Exit status: 0 the runs completed (whatever they found), 2 bad usage, 130 or 143
+stopped by Ctrl-C or SIGTERM (the report of the finished runs written).
 """
 
 from __future__ import annotations
@@ -22,16 +28,18 @@ import datetime
 import json
 import os
 import platform
+import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 from benchmarks import catalog, generator, presets
-from benchmarks.harness import HarnessOptions, ProgressBar, RunSpec, run_all
+from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_on_sigterm,
+                                run_all)
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
-from benchmarks.rows import read_csv, write_csv
+from benchmarks.rows import CsvAppender, read_csv, write_csv
 from benchmarks.shortest_path import shortest_lengths
 from planning_core.cli_args import OneLineErrorParser
 from planning_core.vehicles import Vehicle
@@ -129,13 +137,16 @@ def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
     return specs
 
 
-def write_reports(rows, out: Path, meta: dict, plots: bool) -> Path:
+def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:
+    """runs.csv, report.md, meta.json, the OMPL logs and (``plots``) plots.pdf from
+    ``rows``; with ``yardstick`` the point vehicle's shortest paths (shortest.csv)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
-    # The yardstick for the point vehicle's path lengths: a few seconds at 100x100.
-    shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
-    (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
-        f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
+    shortest = None
+    if yardstick:  # the point vehicle's path lengths against these: seconds at 100x100
+        shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
+        (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
+            f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"
     report.write_text(markdown_report(rows, meta, shortest=shortest) + "\n")
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
@@ -152,41 +163,43 @@ def write_reports(rows, out: Path, meta: dict, plots: bool) -> Path:
     return report
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+def _check_args(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     if args.workers < 1:
         parser.error("--workers must be at least 1")
     if args.seeds is not None and args.seeds < 1:
         parser.error("--seeds must be at least 1")
     if args.time is not None and not args.time > 0:
         parser.error("--time must be positive")
-    out = args.out or RESULTS_DIR / args.preset
 
-    if args.report_only:
-        csv_path = out / "runs.csv"
-        if not csv_path.exists():
-            parser.error(f"{csv_path} does not exist")
-        meta_path = out / "meta.json"
-        meta = json.loads(meta_path.read_text()) if meta_path.exists() else {}
-        print(write_reports(read_csv(csv_path), out, meta, not args.no_plots))
-        return EXIT_OK
 
-    if not args.no_generate:
-        before = {p: p.read_bytes() for p in generator.suite_files()}
-        paths = generator.write_suite()
-        changed = [generator.problem_id(p) for p in paths if before.get(p) != p.read_bytes()]
-        sys.stderr.write(f"benchmarks: suite of {len(paths)} problems regenerated; "
-                         + (f"{len(changed)} files changed: {', '.join(changed[:5])}"
-                            if changed else "identical byte for byte") + "\n")
+def _report_only(parser: argparse.ArgumentParser, args: argparse.Namespace, out: Path) -> int:
+    csv_path = out / "runs.csv"
+    if not csv_path.exists():
+        parser.error(f"{csv_path} does not exist")
+    meta_path = out / "meta.json"
+    meta = json.loads(meta_path.read_text()) if meta_path.exists() else {}
+    print(write_reports(read_csv(csv_path), out, meta, not args.no_plots))
+    return EXIT_OK
 
+
+def _regenerate_suite() -> None:
+    before = {p: p.read_bytes() for p in generator.suite_files()}
+    paths = generator.write_suite()
+    changed = [generator.problem_id(p) for p in paths if before.get(p) != p.read_bytes()]
+    sys.stderr.write(f"benchmarks: suite of {len(paths)} problems regenerated; "
+                     + (f"{len(changed)} files changed: {', '.join(changed[:5])}"
+                        if changed else "identical byte for byte") + "\n")
+
+
+def _choose_planners(parser: argparse.ArgumentParser, args: argparse.Namespace
+                     ) -> tuple[list[catalog.PlannerChoice], str]:
+    """The planners to run, and a note when OMPL's were asked for but are missing."""
     ompl_note = ""
-    include_ompl = not args.no_ompl
-    if include_ompl and not catalog.ompl_installed():
+    if not args.no_ompl and not catalog.ompl_installed():
         ompl_note = ("the ompl package is not installed (pip install ompl, or the project's "
                      "[ompl] extra): OMPL's planners were skipped")
         sys.stderr.write(f"benchmarks: note: {ompl_note}\n")
-    planners = catalog.all_planners(include_ompl)
+    planners = catalog.all_planners(not args.no_ompl)
     if args.planners:
         known = {p.id for p in planners}
         unknown = [name for name in args.planners if name not in known]
@@ -194,6 +207,60 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(f"unknown planner(s) {', '.join(unknown)}; available: "
                          f"{', '.join(sorted(known))}")
         planners = [p for p in planners if p.id in args.planners]
+    return planners, ompl_note
+
+
+def _run(specs: list[RunSpec], args: argparse.Namespace, out: Path
+         ) -> tuple[list, Interrupted | None]:
+    """Every run, each row appended to runs.csv as it finishes; the rows in the
+    order of ``specs``, and how a Ctrl-C or SIGTERM stopped them, if one did."""
+    # Imported here: the progress bar's library is needed only for a run.
+    from benchmarks.progress import Progress
+
+    out.mkdir(parents=True, exist_ok=True)
+    progress = Progress(len(specs))
+    with CsvAppender(out / "runs.csv") as csv_file:
+        def finished(done: int, total: int, row) -> None:
+            csv_file.append(row)
+            progress(done, total, row)
+        try:
+            return run_all(specs, HarnessOptions(workers=args.workers, strict=args.strict),
+                           finished), None
+        except Interrupted as stop:
+            return stop.rows, stop
+        finally:
+            progress.close()
+
+
+def _meta(args: argparse.Namespace, argv: list[str] | None, include_ompl: bool,
+          started: datetime.datetime, load_before: str, wall: float, runs: int) -> dict:
+    return {
+        "preset": args.preset,
+        "date": started.isoformat(timespec="seconds"),
+        "host": platform.node(),
+        "cpu": f"{os.cpu_count()} x {_cpu_model()}",
+        "workers": str(args.workers),
+        "load average (1, 5, 15 min) before": load_before,
+        "load average after": _load_average(),
+        "wall seconds": f"{wall:.1f}",
+        "runs": str(runs),
+        "python": platform.python_version(),
+        "ompl": _ompl_version() if include_ompl else "left out (--no-ompl)",
+        "commit": _git_commit(),
+        "command": "python -m benchmarks " + " ".join(sys.argv[1:] if argv is None else argv),
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    _check_args(parser, args)
+    out = args.out or RESULTS_DIR / args.preset
+    if args.report_only:
+        return _report_only(parser, args, out)
+    if not args.no_generate:
+        _regenerate_suite()
+    planners, ompl_note = _choose_planners(parser, args)
     specs = build_specs(args, planners)
     if not specs:
         parser.error("no runs selected (check --vehicles, --planners and --problems)")
@@ -203,34 +270,27 @@ def main(argv: list[str] | None = None) -> int:
     sys.stderr.write(f"benchmarks: {len(specs)} runs, {args.workers} workers, "
                      f"planners {', '.join(p.id for p in planners)}; load {load_before}\n")
     began = time.perf_counter()
-    rows = run_all(specs, HarnessOptions(workers=args.workers, strict=args.strict),
-                   ProgressBar())
-    wall = time.perf_counter() - began
-    meta = {
-        "preset": args.preset,
-        "date": started.isoformat(timespec="seconds"),
-        "host": platform.node(),
-        "cpu": f"{os.cpu_count()} x {_cpu_model()}",
-        "workers": str(args.workers),
-        "load average (1, 5, 15 min) before": load_before,
-        "load average after": _load_average(),
-        "wall seconds": f"{wall:.1f}",
-        "runs": str(len(rows)),
-        "python": platform.python_version(),
-        "ompl": _ompl_version() if include_ompl else "left out (--no-ompl)",
-        "commit": _git_commit(),
-        "command": "python -m benchmarks " + " ".join(sys.argv[1:] if argv is None else argv),
-    }
+    rows, stop = _run(specs, args, out)
+    meta = _meta(args, argv, not args.no_ompl, started, load_before,
+                 time.perf_counter() - began, len(rows))
     if ompl_note:
         meta["note"] = ompl_note
-    print(write_reports(rows, out, meta, not args.no_plots))
-    return EXIT_OK
+    if stop is not None:
+        for stale in ("shortest.csv", "plots.pdf"):  # an earlier run's, not these rows'
+            (out / stale).unlink(missing_ok=True)
+        meta["interrupted"] = (f"by {signal.Signals(stop.signum).name} after {len(rows)} of "
+                               f"{len(specs)} runs: the report covers the finished ones")
+        sys.stderr.write(f"benchmarks: {meta['interrupted']}\n")
+    print(write_reports(rows, out, meta, plots=stop is None and not args.no_plots,
+                        yardstick=stop is None))
+    return EXIT_OK if stop is None else 128 + stop.signum
 
 
 def entry_point() -> None:
+    interrupt_on_sigterm()
     try:
         status = main()
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # outside the runs (generating the suite, writing reports)
         sys.stderr.write("benchmarks: interrupted\n")
         status = 130
     raise SystemExit(status)

@@ -8,6 +8,10 @@ with ``os.wait4`` (see there why not straight from the worker). The planner's ``
 planning time, tree size and iterations; every output of a run that exits 0 is
 re-checked with ``validator.checks.validate_output``, and an invalid one counts
 as a failure. A run that outlives its time limit by ``grace`` is killed.
+
+Ctrl-C or SIGTERM stops a run of many within a second: the planners running
+are killed (each is its own process group), the runs not started are cancelled,
+and :func:`run_all` raises :class:`Interrupted` with the rows that finished.
 """
 
 from __future__ import annotations
@@ -37,6 +41,9 @@ if TYPE_CHECKING:
 LAUNCHER = Path(__file__).resolve().parent / "launch.py"
 _STATS_LINE = re.compile(r"^\S+ stats: (.*)$", re.MULTILINE)
 _EXIT_STATUS = {0: RunStatus.SOLVED, 2: RunStatus.BAD_INPUT, 3: RunStatus.NO_SOLUTION}
+_RUNNING: set[int] = set()
+"""Process groups of the planners this process is running (the in-process path and a
+worker: one at a time)."""
 
 
 @dataclass(frozen=True)
@@ -161,9 +168,14 @@ def _run_planner(spec: RunSpec, hard_limit: float) -> _Finished:
                                    env=_planner_env(), cwd=ROOT, start_new_session=True)
         timer = threading.Timer(hard_limit, _kill_group, (process.pid, killed))
         timer.start()
+        _RUNNING.add(process.pid)
         try:
             _, wait_status, _ = os.wait4(process.pid, 0)
+        except BaseException:  # Ctrl-C or SIGTERM: the planner must not outlive us
+            _kill_group(process.pid, killed)
+            raise
         finally:
+            _RUNNING.discard(process.pid)
             timer.cancel()
         process_seconds = time.perf_counter() - began
         exit_status = os.waitstatus_to_exitcode(wait_status)
@@ -241,59 +253,87 @@ def order_for_balance(specs: Iterable[RunSpec]) -> list[RunSpec]:
 ProgressCallback = Callable[[int, int, RunRow], None]
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread by :func:`interrupt_on_sigterm`'s handler."""
+
+
+class Interrupted(Exception):
+    """Ctrl-C or SIGTERM stopped :func:`run_all`: the rows of the runs that had
+    finished (in the order of the specs) and the signal's number."""
+
+    def __init__(self, rows: list[RunRow], signum: int):
+        super().__init__(f"interrupted by signal {signum} after {len(rows)} runs")
+        self.rows = rows
+        self.signum = signum
+
+
+def interrupt_on_sigterm() -> None:
+    """From now on SIGTERM raises :class:`Terminated` (a KeyboardInterrupt) in the
+    main thread, so that it stops a run as Ctrl-C does."""
+    def handler(signum, frame):
+        raise Terminated()
+    signal.signal(signal.SIGTERM, handler)
+
+
+def _worker_started(pids) -> None:
+    """In each worker process: Ctrl-C is the parent's to handle (a terminal sends it
+    to the whole process group); SIGTERM kills the running planner, then the worker."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def terminate(signum, frame):
+        for pid in list(_RUNNING):
+            _kill_group(pid, [])
+        os._exit(128 + signum)
+    signal.signal(signal.SIGTERM, terminate)
+    pids.put(os.getpid())
+
+
+def _stop_workers(pool: ProcessPoolExecutor, pids) -> None:
+    """Cancel the runs not started; SIGTERM every worker (each kills its planner)."""
+    pool.shutdown(wait=False, cancel_futures=True)
+    while not pids.empty():
+        try:
+            os.kill(pids.get(), signal.SIGTERM)
+        except ProcessLookupError:
+            pass
+
+
 def run_all(specs: list[RunSpec], options: HarnessOptions = HarnessOptions(),
             progress: ProgressCallback | None = None) -> list[RunRow]:
-    """Every spec once, ``options.workers`` at a time; rows in the order of ``specs``."""
+    """Every spec once, ``options.workers`` at a time; rows in the order of ``specs``.
+    ``progress`` is called with each row as its run finishes. Ctrl-C (or SIGTERM,
+    after :func:`interrupt_on_sigterm`) raises :class:`Interrupted`."""
     ordered = order_for_balance(specs)
     rows: dict[tuple, RunRow] = {}
-    if options.workers <= 1:
-        for spec in ordered:
-            rows[spec.key] = run_one(spec, options)
-            if progress:
-                progress(len(rows), len(ordered), rows[spec.key])
-    else:
-        # spawn: workers start clean (no inherited threads or OMPL state).
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=options.workers, mp_context=context) as pool:
-            futures = {pool.submit(run_one, spec, options): spec for spec in ordered}
-            for future in as_completed(futures):
-                spec = futures[future]
-                rows[spec.key] = future.result()
-                if progress:
-                    progress(len(rows), len(ordered), rows[spec.key])
+
+    def finished(spec: RunSpec, row: RunRow) -> None:
+        rows[spec.key] = row
+        if progress:
+            progress(len(rows), len(ordered), row)
+    try:
+        if options.workers <= 1:
+            for spec in ordered:
+                finished(spec, run_one(spec, options))
+        else:
+            _run_in_workers(ordered, options, finished)
+    except KeyboardInterrupt as stop:
+        signum = signal.SIGTERM if isinstance(stop, Terminated) else signal.SIGINT
+        raise Interrupted([rows[s.key] for s in specs if s.key in rows], signum) from None
     return [rows[spec.key] for spec in specs]
 
 
-class ProgressBar:
-    """A one-line progress bar on stderr (a line per 5 % when stderr is not a terminal)."""
-
-    def __init__(self, stream=None, width: int = 30):
-        self.stream = stream or sys.stderr
-        self.width = width
-        self.began = time.perf_counter()
-        self.failures = 0
-        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
-        self.last_step = -1
-
-    def __call__(self, done: int, total: int, row: RunRow) -> None:
-        if not row.solved:
-            self.failures += 1
-        elapsed = time.perf_counter() - self.began
-        eta = elapsed / done * (total - done) if done else 0.0
-        filled = int(self.width * done / total) if total else self.width
-        text = (f"[{'#' * filled}{'.' * (self.width - filled)}] {done}/{total} runs, "
-                f"{self.failures} unsolved, {_clock(elapsed)} elapsed, ~{_clock(eta)} left")
-        if self.tty:
-            self.stream.write("\r" + text + ("\n" if done == total else ""))
-            self.stream.flush()
-        else:
-            step = done * 20 // total if total else 20
-            if step != self.last_step or done == total:
-                self.last_step = step
-                self.stream.write(text + "\n")
-                self.stream.flush()
-
-
-def _clock(seconds: float) -> str:
-    seconds = int(seconds)
-    return f"{seconds // 60}:{seconds % 60:02d}"
+def _run_in_workers(ordered: list[RunSpec], options: HarnessOptions,
+                    finished: Callable[[RunSpec, RunRow], None]) -> None:
+    # spawn: workers start clean (no inherited threads or OMPL state).
+    context = multiprocessing.get_context("spawn")
+    pids = context.SimpleQueue()
+    pool = ProcessPoolExecutor(max_workers=options.workers, mp_context=context,
+                               initializer=_worker_started, initargs=(pids,))
+    try:
+        futures = {pool.submit(run_one, spec, options): spec for spec in ordered}
+        for future in as_completed(futures):
+            finished(futures[future], future.result())
+    except BaseException:
+        _stop_workers(pool, pids)
+        raise
+    pool.shutdown()

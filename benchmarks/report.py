@@ -21,6 +21,8 @@ import statistics
 from dataclasses import dataclass
 from typing import Iterable, Mapping, Sequence
 
+from tabulate import tabulate
+
 from benchmarks.catalog import label, reference_planner
 from benchmarks.rows import RunRow
 from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, PathLengthVsPlanner,
@@ -135,33 +137,40 @@ def _ratio(value: float) -> str:
     return "–" if not math.isfinite(value) else f"{value:.2f}×"
 
 
-SUMMARY_HEADER = ("| Planner | Success % | Time (s) | Path length | Tree nodes | "
-                  "Median time (s) | p90 time (s) | Process median (s) | "
-                  "vs OMPL RRT, planning | vs OMPL RRT, process |")
-SUMMARY_RULE = "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+def markdown_table(header: Sequence[str], body: Iterable[Sequence[str]],
+                   align: str) -> list[str]:
+    """A Markdown (pipe) table of the cells as given, one letter of ``align`` per
+    column: ``l`` left, ``r`` right, ``c`` centre."""
+    names = {"l": "left", "r": "right", "c": "center"}
+    text = tabulate([list(cells) for cells in body], headers=list(header), tablefmt="pipe",
+                    colalign=[names[a] for a in align], disable_numparse=True)
+    return text.splitlines()
+
+
+SUMMARY_HEADER = ("Planner", "Success %", "Time (s)", "Path length", "Tree nodes",
+                  "Median time (s)", "p90 time (s)", "Process median (s)",
+                  "vs OMPL RRT, planning", "vs OMPL RRT, process")
 
 
 def summary_table(rows: Sequence[RunRow], vehicle: str) -> list[str]:
     """The per-vehicle table: one line per planner, mean ± std, median, p90, ratios."""
     by_planner = group((r for r in rows if r.vehicle == vehicle), "planner")
     reference = by_planner.get((reference_planner(Vehicle(vehicle)),), [])
-    lines = [SUMMARY_HEADER, SUMMARY_RULE]
+    body = []
     for name in planner_order(key[0] for key in by_planner):
         runs = by_planner[(name,)]
         s = summarize(runs)
-        lines.append(
-            f"| {label(name, vehicle)} | {s.success_percent:.0f} | {_pm(s.time)} | "
-            f"{_pm(s.path_length, 4)} | {_pm(s.tree_nodes, 4)} | {_fmt(s.time.median)} | "
-            f"{_fmt(s.time.p90)} | {_fmt(s.process.median)} | "
-            f"{_ratio(median_ratio(runs, reference))} | "
-            f"{_ratio(median_ratio(runs, reference, process=True))} |")
-    return lines
+        body.append((label(name, vehicle), f"{s.success_percent:.0f}", _pm(s.time),
+                     _pm(s.path_length, 4), _pm(s.tree_nodes, 4), _fmt(s.time.median),
+                     _fmt(s.time.p90), _fmt(s.process.median),
+                     _ratio(median_ratio(runs, reference)),
+                     _ratio(median_ratio(runs, reference, process=True))))
+    return markdown_table(SUMMARY_HEADER, body, "l" + "r" * 9)
 
 
-PROBLEM_HEADER = ("| Problem | Planner | Success % | Time (s) | Median | p90 | "
-                  "Process median (s) | Path length | Tree nodes | Peak MB | "
-                  "vs OMPL, planning | vs OMPL, process |")
-PROBLEM_RULE = "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+PROBLEM_HEADER = ("Problem", "Planner", "Success %", "Time (s)", "Median", "p90",
+                  "Process median (s)", "Path length", "Tree nodes", "Peak MB",
+                  "vs OMPL, planning", "vs OMPL, process")
 
 
 def problem_order(rows: Iterable[RunRow]) -> list[str]:
@@ -175,20 +184,19 @@ def problem_table(rows: Sequence[RunRow], vehicle: str) -> list[str]:
     mine = [r for r in rows if r.vehicle == vehicle]
     by_key = group(mine, "problem", "planner")
     reference_id = reference_planner(Vehicle(vehicle))
-    lines = [PROBLEM_HEADER, PROBLEM_RULE]
+    body = []
     for problem in problem_order(mine):
         reference = by_key.get((problem, reference_id), [])
         for name in planner_order(p for (q, p) in by_key if q == problem):
             runs = by_key[(problem, name)]
             s = summarize(runs)
-            lines.append(
-                f"| {problem} | {label(name, vehicle)} | {s.success_percent:.0f} | "
-                f"{_pm(s.time)} | {_fmt(s.time.median)} | {_fmt(s.time.p90)} | "
-                f"{_fmt(s.process.median)} | {_pm(s.path_length, 4)} | "
-                f"{_fmt(s.tree_nodes.median, 4)} | {_fmt(s.peak_memory_mb.median)} | "
-                f"{_ratio(median_ratio(runs, reference))} | "
-                f"{_ratio(median_ratio(runs, reference, process=True))} |")
-    return lines
+            body.append((problem, label(name, vehicle), f"{s.success_percent:.0f}",
+                         _pm(s.time), _fmt(s.time.median), _fmt(s.time.p90),
+                         _fmt(s.process.median), _pm(s.path_length, 4),
+                         _fmt(s.tree_nodes.median, 4), _fmt(s.peak_memory_mb.median),
+                         _ratio(median_ratio(runs, reference)),
+                         _ratio(median_ratio(runs, reference, process=True))))
+    return markdown_table(PROBLEM_HEADER, body, "ll" + "r" * 10)
 
 
 @dataclass(frozen=True)
@@ -369,11 +377,10 @@ def _median_path_lengths(runs: Sequence[RunRow]) -> dict[str, float]:
 
 def targets_table(rows: Sequence[RunRow],
                   shortest: Mapping[str, float] | None = None) -> list[str]:
-    lines = ["| Target | Met | Measured |", "|---|:---:|---|"]
-    for check in check_targets(rows, shortest):
-        mark = {True: "yes", False: "**no**", None: "n/a"}[check.met]
-        lines.append(f"| {check.target} | {mark} | {check.detail} |")
-    return lines
+    marks = {True: "yes", False: "**no**", None: "n/a"}
+    body = [(check.target, marks[check.met], check.detail)
+            for check in check_targets(rows, shortest)]
+    return markdown_table(("Target", "Met", "Measured"), body, "lcl")
 
 
 def path_quality_table(rows: Sequence[RunRow], shortest: Mapping[str, float]) -> list[str]:
@@ -383,17 +390,26 @@ def path_quality_table(rows: Sequence[RunRow], shortest: Mapping[str, float]) ->
     names = planner_order(r.planner for r in point)
     medians = {name: _median_path_lengths([r for r in point if r.planner == name])
                for name in names}
-    lines = ["| Problem | Shortest | " + " | ".join(label(name, "point") for name in names) + " |",
-             "|---|---:|" + "---:|" * len(names)]
+    body = []
     for problem in problem_order(point):
         cells = [_fmt(medians[name][problem] / shortest[problem], 4)
                  if problem in medians[name] else "–" for name in names]
-        lines.append(f"| {problem} | {_fmt(shortest[problem], 4)} | " + " | ".join(cells) + " |")
+        body.append((problem, _fmt(shortest[problem], 4), *cells))
     means = [_fmt(statistics.fmean(length / shortest[problem]
                                    for problem, length in medians[name].items()), 4)
              if medians[name] else "–" for name in names]
-    lines.append("| mean over problems | | " + " | ".join(means) + " |")
-    return lines
+    body.append(("mean over problems", "", *means))
+    header = ("Problem", "Shortest", *(label(name, "point") for name in names))
+    return markdown_table(header, body, "lr" + "r" * len(names))
+
+
+def failures_table(rows: Sequence[RunRow], limit: int = 50) -> list[str]:
+    """The first ``limit`` runs that failed for another reason than a limit."""
+    failed = [r for r in rows if r.status in ("invalid", "crashed", "killed", "bad_input")]
+    body = [(r.problem, r.vehicle, r.planner, str(r.seed), r.status,
+             r.failure.replace("|", "/")[:120]) for r in failed[:limit]]
+    return markdown_table(("Problem", "Vehicle", "Planner", "Seed", "Status", "Detail"),
+                          body, "lllrll") if body else []
 
 
 def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: bool = True,
@@ -426,15 +442,9 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: b
             out += ["Median path length over the shortest path (benchmarks/shortest_path.py: "
                     "exact, through the corners of the blocked cells), per problem; 1 is "
                     "optimal.", ""] + path_quality_table(rows, shortest) + [""]
-    failures = [r for r in rows if r.status in ("invalid", "crashed", "killed", "bad_input")]
+    failures = failures_table(rows)
     if failures:
-        out += ["## Runs that failed for other reasons than a limit", "",
-                "| Problem | Vehicle | Planner | Seed | Status | Detail |",
-                "|---|---|---|---:|---|---|"]
-        for r in failures[:50]:
-            out.append(f"| {r.problem} | {r.vehicle} | {r.planner} | {r.seed} | {r.status} | "
-                       f"{r.failure.replace('|', '/')[:120]} |")
-        out.append("")
+        out += ["## Runs that failed for other reasons than a limit", ""] + failures + [""]
     if per_problem:
         for vehicle in vehicles:
             out += [f"## Per problem: {VEHICLE_TITLES[vehicle]}", ""]

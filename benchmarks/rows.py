@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 from dataclasses import asdict, dataclass, fields
 from enum import Enum
 from pathlib import Path
@@ -100,13 +101,43 @@ def _from_text(name: str, text: str):
     return text
 
 
+def _record(row: RunRow) -> list[str]:
+    values = asdict(row)
+    return [_to_text(values[name]) for name in FIELD_NAMES]
+
+
 def write_csv(rows: Iterable[RunRow], path: Path) -> None:
-    with open(path, "w", newline="") as handle:
+    """The whole file at once: written beside ``path``, then renamed over it."""
+    partial = path.with_name(path.name + ".partial")
+    with open(partial, "w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
         writer.writerow(FIELD_NAMES)
-        for row in rows:
-            values = asdict(row)
-            writer.writerow([_to_text(values[name]) for name in FIELD_NAMES])
+        writer.writerows(_record(row) for row in rows)
+    os.replace(partial, path)
+
+
+class CsvAppender:
+    """A CSV written as runs finish: the header at once, then each row as it is
+    given, flushed, so that a run stopped at any moment leaves the finished rows."""
+
+    def __init__(self, path: Path):
+        self._handle = open(path, "w", newline="")
+        self._writer = csv.writer(self._handle, lineterminator="\n")
+        self._writer.writerow(FIELD_NAMES)
+        self._handle.flush()
+
+    def append(self, row: RunRow) -> None:
+        self._writer.writerow(_record(row))
+        self._handle.flush()
+
+    def close(self) -> None:
+        self._handle.close()
+
+    def __enter__(self) -> "CsvAppender":
+        return self
+
+    def __exit__(self, *exc_info) -> None:
+        self.close()
 
 
 def read_csv(path: Path) -> list[RunRow]:
