@@ -256,17 +256,29 @@ def compile_distance(variables: Sequence[Variable],
     d2 = _rem(b[2] - a[2], TAU); return W0 * _sqrt(d0 * d0 + d1 * d1) + W1 * abs(d2)``.
     """
     lines = ["def distance(a, b):"]
-    terms = []
-    namespace = {"_rem": math.remainder, "_sqrt": math.sqrt, "TAU": TAU}
-    for k, (indices, weight) in enumerate(groups):
+    for indices, _ in groups:
         for i in indices:
             diff = f"b[{i}] - a[{i}]"
             lines.append(f"    d{i} = _rem({diff}, TAU)" if variables[i].angle else f"    d{i} = {diff}")
+    namespace = {"_rem": math.remainder}
+    return compile_metric_sum("distance", lines, groups, "d", namespace)
+
+
+def compile_metric_sum(name: str, lines: list[str], groups, prefix: str,
+                       namespace: dict) -> Callable:
+    """Finish generated source whose ``lines`` set ``{prefix}{i}`` for each
+    variable ``i`` with the metric's sum over groups, ``W0 * _sqrt(d0 * d0 + d1 *
+    d1) + W1 * abs(d2)``, then compile it and return the function ``name``. (Generated
+    once per space: it is about 3x faster than a loop over the groups.)"""
+    terms = []
+    namespace.update(_sqrt=math.sqrt, TAU=TAU)
+    for k, (indices, weight) in enumerate(groups):
         namespace[f"W{k}"] = weight
         if len(indices) == 1:
-            terms.append(f"W{k} * abs(d{indices[0]})")
+            terms.append(f"W{k} * abs({prefix}{indices[0]})")
         else:
-            terms.append(f"W{k} * _sqrt({' + '.join(f'd{i} * d{i}' for i in indices)})")
-    lines.append(f"    return {' + '.join(terms) if terms else '0.0'}")
-    exec("\n".join(lines), namespace)  # noqa: S102 - source built above from ints only
-    return namespace["distance"]
+            squares = " + ".join(f"{prefix}{i} * {prefix}{i}" for i in indices)
+            terms.append(f"W{k} * _sqrt({squares})")
+    lines = lines + [f"    return {' + '.join(terms) if terms else '0.0'}"]
+    exec("\n".join(lines), namespace)  # noqa: S102 - source built from ints and names only
+    return namespace[name]

@@ -26,7 +26,7 @@ import heapq
 import math
 from collections.abc import Callable, Sequence
 
-from planning_core.spaces import TAU, State, StateSpace
+from planning_core.spaces import TAU, State, StateSpace, compile_metric_sum
 
 _isfinite = math.isfinite
 
@@ -284,19 +284,10 @@ def compile_box_bound(space: StateSpace) -> Callable[[State, list, list, float],
     sqrt(sum of squares)``), so float rounding keeps bound <= distance.
     """
     lines = ["def bound(q, lo, hi, slack):"]
-    terms = []
-    namespace = {"_sqrt": math.sqrt, "TAU": TAU}
-    for k, (indices, weight) in enumerate(space.groups):
+    for indices, _ in space.groups:
         for i in indices:
             lines += _angle_gap(i) if space.variables[i].angle else _real_gap(i)
-        namespace[f"W{k}"] = weight
-        if len(indices) == 1:
-            terms.append(f"W{k} * g{indices[0]}")
-        else:
-            terms.append(f"W{k} * _sqrt({' + '.join(f'g{i} * g{i}' for i in indices)})")
-    lines.append(f"    return {' + '.join(terms) if terms else '0.0'}")
-    exec("\n".join(lines), namespace)  # noqa: S102 - source built above from ints only
-    return namespace["bound"]
+    return compile_metric_sum("bound", lines, space.groups, "g", {})
 
 
 def _real_gap(i: int) -> list[str]:

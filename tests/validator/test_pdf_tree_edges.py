@@ -24,6 +24,7 @@ from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
 from validator.render_pdf import TREE_RGB, page_layout, render_pdf
+from validator_testlib import colour_near
 
 ROOT = Path(__file__).resolve().parents[2]
 SCALE = 4.0  # pixels per PDF point: the 0.4 pt tree line is 1.6 px wide
@@ -67,17 +68,7 @@ def rasterise(pdf_bytes: bytes):
 
 
 def has_colour(image, page_point, rgb, radius=2, tolerance=40) -> bool:
-    px, py = page_point
-    width, height = image.size
-    cx, cy = round(px * SCALE), round(height - py * SCALE)
-    target = [round(c * 255) for c in rgb]
-    for x in range(cx - radius, cx + radius + 1):
-        for y in range(cy - radius, cy + radius + 1):
-            if 0 <= x < width and 0 <= y < height and all(
-                    abs(a - b) <= tolerance for a, b in zip(image.getpixel((x, y)), target)):
-                return True
-    return False
-
+    return colour_near(image, page_point, rgb, SCALE, radius, tolerance)
 
 def render(problem_text: str, vehicle: Vehicle, output: str):
     problem = parse_problem(problem_text)

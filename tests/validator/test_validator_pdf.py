@@ -17,7 +17,7 @@ from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
 from validator.render_pdf import (FAILURE_RGB, SOLUTION_RGB, RenderOptions, page_layout,
                                   render_pdf, solution_points)
-from validator_testlib import CORPUS, load_problem, run_validator
+from validator_testlib import CORPUS, colour_near, load_problem, run_validator
 
 SCALE = 2.0  # pixels per PDF point when rasterising
 
@@ -29,17 +29,7 @@ def rasterise(pdf_bytes: bytes):
 
 
 def near_colour(image, page_point, rgb, radius=2, tolerance=60) -> bool:
-    px, py = page_point
-    width, height = image.size
-    cx, cy = round(px * SCALE), round(height - py * SCALE)
-    target = [round(c * 255) for c in rgb]
-    for x in range(cx - radius, cx + radius + 1):
-        for y in range(cy - radius, cy + radius + 1):
-            if 0 <= x < width and 0 <= y < height:
-                if all(abs(a - b) <= tolerance for a, b in zip(image.getpixel((x, y)), target)):
-                    return True
-    return False
-
+    return colour_near(image, page_point, rgb, SCALE, radius, tolerance)
 
 def render(problem, vehicle, text, **kw) -> tuple[bytes, object]:
     report = validate_output(problem, vehicle, text, **kw)

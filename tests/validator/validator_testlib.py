@@ -75,3 +75,19 @@ def run_validator(args: list[str], problem_text: str | bytes, cwd: Path,
 def python_planner(code: str) -> list[str]:
     """A planner command that runs ``code`` with this interpreter."""
     return [sys.executable, "-c", code]
+
+
+def colour_near(image, page_point, rgb, scale: float, radius: int = 2,
+                tolerance: int = 60) -> bool:
+    """Whether a pixel within ``radius`` of a PDF point (rasterised at ``scale``
+    pixels per point) has colour ``rgb`` (0-1 floats) within ``tolerance`` per channel."""
+    px, py = page_point
+    width, height = image.size
+    cx, cy = round(px * scale), round(height - py * scale)
+    target = [round(c * 255) for c in rgb]
+    for x in range(cx - radius, cx + radius + 1):
+        for y in range(cy - radius, cy + radius + 1):
+            if 0 <= x < width and 0 <= y < height and all(
+                    abs(a - b) <= tolerance for a, b in zip(image.getpixel((x, y)), target)):
+                return True
+    return False
