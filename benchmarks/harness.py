@@ -166,10 +166,13 @@ def _run_planner(spec: RunSpec, hard_limit: float) -> _Finished:
         process = subprocess.Popen([sys.executable, "-S", "-I", str(LAUNCHER), report_path,
                                     *command], stdin=stdin, stdout=out, stderr=err,
                                    env=_planner_env(), cwd=ROOT, start_new_session=True)
+        # A daemon: a timer left running must never hold up the interpreter's exit.
         timer = threading.Timer(hard_limit, _kill_group, (process.pid, killed))
-        timer.start()
-        _RUNNING.add(process.pid)
+        timer.daemon = True
         try:
+            # Inside the try: Ctrl-C or SIGTERM may arrive while the timer starts.
+            _RUNNING.add(process.pid)
+            timer.start()
             _, wait_status, _ = os.wait4(process.pid, 0)
         except BaseException:  # Ctrl-C or SIGTERM: the planner must not outlive us
             _kill_group(process.pid, killed)
