@@ -273,3 +273,41 @@ def read_problem_from_stdin(prog: str) -> Problem | None:
     except ProblemFormatError as error:
         say(f"{prog}: bad problem: {error}")
         return None
+
+
+def parse_any_problem(text: str):
+    """A ``.sw`` :class:`Problem` or, when the first word says ``kinoplan`` (SPEC 5),
+    a :class:`~planning_core.kinoplan.KinoplanProblem`; ProblemFormatError if bad.
+    The kinoplan reader is imported only for such a text (start-up of .sw runs)."""
+    head = text.lstrip()[:1]
+    if head and not (head.isdigit() or head in "+-"):
+        from planning_core.kinoplan_text import looks_like_kinoplan, parse_kinoplan
+        if looks_like_kinoplan(text):
+            return parse_kinoplan(text)
+    return parse_problem(text)
+
+
+def read_any_problem_from_stdin(prog: str):
+    """:func:`read_problem_from_stdin` for either format (:func:`parse_any_problem`)."""
+    text = read_problem_text_from_stdin(prog)
+    if text is None:
+        return None
+    try:
+        return parse_any_problem(text)
+    except ProblemFormatError as error:
+        say(f"{prog}: bad problem: {error}")
+        return None
+
+
+def is_kinoplan(problem) -> bool:
+    """The problem is a ``kinoplan 1`` one (it carries its own system)."""
+    return not isinstance(problem, Problem)
+
+
+def reject_vehicle_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> None:
+    """``-grad``, ``-ugrad``, ``-left`` name a grid vehicle: with a kinoplan problem
+    (its ``system`` line names the system) they are a usage error, exit 2."""
+    given = [flag for flag in ("-ugrad", "-grad", "-left") if getattr(args, flag[1:])]
+    if given:
+        parser.error(f"{' '.join(given)}: a kinoplan problem names its own system "
+                     "(the vehicle flags are for .sw problems)")

@@ -16,8 +16,9 @@ Row = tuple[float, ...]
 def trajectory_rows(system, path: Sequence[Row], path_controls: Sequence[Row]) -> tuple[Row, ...]:
     if not system.kinodynamic:
         return tuple(path)
-    if len(path) == 1:
-        # Start already at the goal: one line, the control that keeps it there.
+    if len(path) == 1 and not path_controls:
+        # Start already at the goal: one line, the control that keeps it there. (A
+        # kinoplan planner gives that control itself: SpaceInformation.start_in_goal_controls.)
         return (path[0] + system.rest_control,)
     return tuple(state + control for state, control in zip(path, path_controls))
 

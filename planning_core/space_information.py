@@ -13,13 +13,17 @@ may walk every cell of a big map takes an optional ``stop`` and raises
 from __future__ import annotations
 
 import random
-from typing import Sequence
+from typing import Optional, Sequence
 
 from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
+
+# Moves a goal on the map's left or bottom edge (free, not printable) inward, as
+# rrt_cli/planners/point_common.goal_vertex does: far below the 0.1 tolerance.
+_EDGE_NUDGE = 1e-6
 
 
 class SpaceInformation:
@@ -65,6 +69,29 @@ class SpaceInformation:
     def sample_control(self, rng: random.Random):
         return self.system.sample_control(rng)
 
+    def goal_target(self, rng: random.Random) -> tuple[float, float]:
+        """The goal-biased target: the goal point, nudged inside the map when it lies
+        on the left or bottom edge (a node there could not be printed). No ``rng``."""
+        x, y = self.goal.point
+        if self.printable(x, y):
+            return (x, y)
+        return (max(x, _EDGE_NUDGE), max(y, _EDGE_NUDGE))
+
+    # -- nearest and closeness: by position on the grid --------------------------
+    def new_nearest(self) -> "PositionNearest":
+        """An empty nearest-node index (a quadtree over the map, by position)."""
+        return PositionNearest(self.world.width, self.world.height)
+
+    @staticmethod
+    def closeness(end: Sequence[float], target: Sequence[float]) -> float:
+        """How far a steering end is from a target: squared position distance."""
+        return (end[0] - target[0]) ** 2 + (end[1] - target[1]) ** 2
+
+    def start_in_goal_controls(self) -> Optional[tuple]:
+        """For a start already in the goal region: the path's controls, here none
+        (plan_rows prints the system's ``rest_control``, SPEC 2)."""
+        return ()
+
     # -- capabilities of the world (None where it has none) ------------------------
     def goal_certainly_unreachable(self, stop: Stop = None) -> bool:
         """True only when it is proved: a geometric system whose start and goal no
@@ -79,9 +106,96 @@ class SpaceInformation:
         return self.world.distance_along_cells(stop)
 
 
+class PositionNearest:
+    """The grid's nearest-node index: a quadtree over states' (x, y)."""
+
+    def __init__(self, width: float, height: float):
+        from planning_core.nearest.quadtree import QuadtreeNearest
+        self.index = QuadtreeNearest(width, height)
+        self._add, self._nearest = self.index.add, self.index.nearest
+
+    def add(self, state: Sequence[float]) -> int:
+        return self._add(state[0], state[1])
+
+    def nearest(self, target: Sequence[float]) -> int:
+        return self._nearest(target[0], target[1])
+
+
 def grid_space_information(problem: Problem, system_name) -> SpaceInformation:
     """A ``.sw`` problem for the named system (``point``, ``spaceship``, ``left``;
     a :class:`~planning_core.vehicles.Vehicle` names one too)."""
     system = load_system(getattr(system_name, "value", system_name))
     return SpaceInformation(system, GridWorld(problem), system.start_state(*problem.start),
                             GoalRegion(problem.goal))
+
+
+class KinoplanSpaceInformation:
+    """A ``kinoplan 1`` system (SPEC 5) in its continuous world: the same questions
+    as :class:`SpaceInformation`, answered over full states and the problem's metric.
+
+    Valid: the problem's state validator (bounds, body in the box, off every
+    obstacle); no printability test (the bounds are part of validity). Targets
+    are uniform states of the system's space; nearest and closeness are by the
+    metric (an exact kd-tree)."""
+
+    def __init__(self, problem):
+        from planning_core.kinoplan import state_validator
+        self.problem = problem
+        self.system = problem.system
+        self.world = problem.world
+        self.start = problem.start
+        self.goal = problem.goal
+        self.space = problem.system.space
+        self.is_valid = state_validator(self.system, self.world)
+        self.closeness = self.space.distance
+        self._sample = self.space.sample_uniform
+
+    def propagate_valid(self, state, control):
+        """Where ``control`` leads from ``state`` if every slice is valid; else None."""
+        return self.system.propagate_while(state, control, self.is_valid)
+
+    def sample_target(self, rng: random.Random) -> tuple[float, ...]:
+        """A uniform state of the system's space (valid or not)."""
+        return self._sample(rng)
+
+    def sample_control(self, rng: random.Random):
+        return self.system.sample_control(rng)
+
+    def goal_target(self, rng: random.Random) -> tuple[float, ...]:
+        """The goal's values; the variables it does not name from a uniform sample
+        (one draw per variable; none when the goal names every variable)."""
+        if self.goal.full:
+            return self.goal.target
+        return self.goal.complete(self._sample(rng))
+
+    def new_nearest(self):
+        """An empty nearest-node index over full states (kd-tree, the metric)."""
+        from planning_core.nearest.kdtree import KDTree
+        return KDTree(self.space)
+
+    def start_in_goal_controls(self) -> Optional[tuple]:
+        """For a start already in the goal region: one held control, each value 0
+        clamped into its bounds, for KMIN slices, when every slice is valid and the
+        end is still in the goal region; else None (then plan as usual)."""
+        system = self.system
+        if not system.kinodynamic:
+            return ()
+        control = tuple(min(max(0.0, lo), hi) for lo, hi in system.controls) + (system.kmin,)
+        end = self.propagate_valid(self.start, control)
+        return (control,) if end is not None and self.goal.reached(end) else None
+
+    def invalid_reason(self, state: Sequence[float]) -> Optional[str]:
+        """Why ``state`` is not valid (a bound, the box, which obstacle), or None."""
+        from planning_core.kinoplan import invalid_reason
+        return invalid_reason(self.system, self.world, state, self.problem.obstacle_lines)
+
+    def goal_certainly_unreachable(self, stop: Stop = None) -> bool:
+        return False
+
+    def distance_along_free_space(self, stop: Stop = None):
+        return None
+
+
+def kinoplan_space_information(problem) -> KinoplanSpaceInformation:
+    """The SpaceInformation of a :class:`~planning_core.kinoplan.KinoplanProblem`."""
+    return KinoplanSpaceInformation(problem)

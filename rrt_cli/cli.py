@@ -1,4 +1,9 @@
-"""``rrt_cli``: read a `.sw` problem on stdin, print a trajectory and the motion tree.
+"""``rrt_cli``: read a problem on stdin, print a trajectory and the motion tree.
+
+The problem is a `.sw` grid (SPEC 1, its first word an integer) or a ``kinoplan 1``
+problem (SPEC 5, its first word ``kinoplan``): then its ``system`` line names the
+system, the vehicle flags are a usage error, and only RRT plans for it so far
+(the kinodynamic systems: pendulum, car2, unicycle, car1).
 
 Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
 its reader gone), 2 bad usage or bad problem, 3 no solution within the limits (or
@@ -12,11 +17,12 @@ import dataclasses
 import random
 
 from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, positive_float, positive_int,
-                                    read_problem_from_stdin, reserve_standard_fds, say, seed,
+                                    describe_os_error, is_kinoplan, positive_float,
+                                    positive_int, read_any_problem_from_stdin,
+                                    reject_vehicle_flags, reserve_standard_fds, say, seed,
                                     vehicle_from_flags, write_stdout)
 from planning_core.plan_text import format_plan
-from planning_core.space_information import grid_space_information
+from planning_core.space_information import grid_space_information, kinoplan_space_information
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopCondition
 from rrt_cli.smoothing import smooth_path
@@ -32,8 +38,8 @@ DEFAULT_ITERATIONS = 5_000_000
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineErrorParser(
         prog="rrt_cli",
-        description="Plan on a grid map read from stdin (the .sw format); print the "
-                    "trajectory and the motion tree on stdout.",
+        description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
+                    "problem); print the trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "
                "2 bad usage or bad problem, 3 no solution within the limits.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
@@ -53,28 +59,52 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _space_information(parser, args, entry):
+    """The problem on stdin as a SpaceInformation and the name of its system or
+    vehicle; None after one line on stderr (exit 2)."""
+    vehicle = vehicle_from_flags(parser, args)
+    if args.smooth and vehicle.system.kinodynamic:
+        parser.error("-smooth works on the point vehicle only")
+    flags_given = args.ugrad or args.grad or args.left
+    if flags_given and not entry.plans_for(vehicle.system):  # refused before reading stdin
+        say(f"rrt_cli: error: planner {args.planner!r} does not support the "
+            f"{vehicle.value} vehicle")
+        return None
+    problem = read_any_problem_from_stdin("rrt_cli")
+    if problem is None:
+        return None
+    if is_kinoplan(problem):
+        reject_vehicle_flags(parser, args)
+        if args.smooth:
+            parser.error("-smooth works on the point vehicle only")
+        name = problem.system_name
+        if not entry.plans_for_kinoplan(problem.system):
+            hint = ("use -planner rrt" if problem.system.kinodynamic
+                    else "no planner plans for geometric kinoplan systems yet")
+            say(f"rrt_cli: error: planner {args.planner!r} does not plan for kinoplan "
+                f"problems of the {name} system yet ({hint})")
+            return None
+        return kinoplan_space_information(problem), name
+    if not entry.plans_for(vehicle.system):
+        say(f"rrt_cli: error: planner {args.planner!r} does not support the "
+            f"{vehicle.value} vehicle")
+        return None
+    return grid_space_information(problem, vehicle.value), vehicle.value
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    vehicle = vehicle_from_flags(parser, args)
-    system = vehicle.system
-    if args.smooth and system.kinodynamic:
-        parser.error("-smooth works on the point vehicle only")
     entry = PLANNERS[args.planner]
-    if not entry.plans_for(system):
-        say(f"rrt_cli: error: planner {args.planner!r} does not support the "
-            f"{vehicle.value} vehicle")
+    found = _space_information(parser, args, entry)
+    if found is None:
         return EXIT_USAGE
-
-    problem = read_problem_from_stdin("rrt_cli")
-    if problem is None:
-        return EXIT_USAGE
+    si, vehicle_name = found
 
     run_seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)
     rng = random.Random(run_seed)
     planner = entry.load()
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
-    si = grid_space_information(problem, vehicle.value)
     result = planner.solve(si, stop, rng, planner.Params())
     if args.smooth and result.solved:
         result = dataclasses.replace(result, path=tuple(smooth_path(si.world, result.path, rng)))
@@ -82,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.stats:
         # One key=value line, stable for scripts (the benchmark harness parses it).
         say(f"rrt_cli stats: status={result.status.name.lower()} "
-            f"planner={args.planner} vehicle={vehicle.value} seed={run_seed} "
+            f"planner={args.planner} vehicle={vehicle_name} seed={run_seed} "
             f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
             f"planning_seconds={stats.planning_seconds:.6f}")
     if result.status is PlanStatus.OUT_OF_MEMORY:

@@ -22,7 +22,8 @@ from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
 from planning_core.plan_rows import row_widths
 from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
-from planning_core.space_information import SpaceInformation, grid_space_information
+from planning_core.space_information import (KinoplanSpaceInformation, SpaceInformation,
+                                             grid_space_information)
 from planning_core.vehicles import Vehicle
 from planning_core.worlds.grid import SAMPLE_STEP
 
@@ -222,6 +223,9 @@ class _Validation:
     def line_of(self, index: int) -> int:
         return self.plan.trajectory_line(index)
 
+    def other_answer_hint(self, error: PlanParseError) -> str:
+        return _other_answer_hint(error, self.system)
+
     # 1
     def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
         fields, tree_fields = row_widths(self.system)
@@ -237,7 +241,7 @@ class _Validation:
         except PlanParseError as error:
             detail = f"line {error.line}: {error.message}"
             if isinstance(error, PlanRowError):
-                detail += _other_answer_hint(error, self.system)
+                detail += self.other_answer_hint(error)
             raise self.fail(1, PARSE_ERROR, detail, error.line) from None
         if self.plan.trailing_line is not None:
             self.warnings.append(f"line {self.plan.trailing_line}: text after the tree "
@@ -292,7 +296,7 @@ class _Validation:
     def _slices_or_fail(self, number: int, message: str, row, line: int) -> list:
         """The slice states of a kinodynamic row's control; a failure of check
         ``number`` at the first slice that is not valid."""
-        system, problem = self.system, self.problem
+        system = self.system
         n = len(system.state_names)
         state, control = row[:n], row[n:]
         slices = system.slice_states(state, control)
@@ -300,9 +304,13 @@ class _Validation:
             if not self.si.is_valid(sliced):
                 x, y = sliced[0], sliced[1]
                 raise self.fail(number, message, f"line {line}: control {_angle(*control)} from "
-                                f"state {_angle(*state)}: slice {k + 1} of {system.slices} at "
-                                f"{_place(problem, x, y)}", line, (x, y))
+                                f"state {_angle(*state)}: slice {k + 1} of {len(slices)} "
+                                f"{self.invalid_place(sliced)}", line, (x, y))
         return slices
+
+    def invalid_place(self, state) -> str:
+        """Where an invalid state is, for a message."""
+        return f"at {_place(self.problem, state[0], state[1])}"
 
     # 5
     def check_goal(self) -> CheckResult:
@@ -377,9 +385,9 @@ class _Validation:
         """A kinodynamic line's end state and the length of its flown curve; fails
         check 6 at its state or first slice that is not valid."""
         x, y = row[0], row[1]
-        if not self.si.is_valid(row):
+        if not self.si.is_valid(row[:len(self.system.state_names)]):
             raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
-                            f"{_place(self.problem, x, y)}", line, (x, y))
+                            f"{self.invalid_place(row)}", line, (x, y))
         last = index == self.plan.trajectory_count - 1
         slices = (self.last_slices if last and self.last_slices
                   else self._slices_or_fail(6, SPACESHIP_COLLISION, row, line))
@@ -389,6 +397,16 @@ class _Validation:
             length += math.hypot(sx - x, sy - y)
             x, y = sx, sy
         return slices[-1], length
+
+    state_tolerance = STATE_TOLERANCE
+
+    def motion_summary(self, n: int) -> str:
+        return f"{n} steps of {self.system.slices} slices"
+
+    def same_state(self, claimed, computed) -> bool:
+        """Check 7's test: each variable within ``state_tolerance``."""
+        tolerance = self.state_tolerance
+        return all(abs(a - b) <= tolerance for a, b in zip(claimed, computed))
 
     # 6 and 7, kinodynamic systems: one integration per line serves both checks.
     def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
@@ -407,14 +425,14 @@ class _Validation:
             length += step_length
             if mismatch is None and index + 1 < n:
                 claimed = plan.trajectory_row(index + 1)[:dims]
-                if not all(abs(a - b) <= STATE_TOLERANCE for a, b in zip(claimed, end)):
+                if not self.same_state(claimed, end):
                     mismatch = self.fail(
                         7, dynamics_message(row[dims:], row[:dims], claimed, end),
                         f"line {line}: its control applied to its state does not give line "
-                        f"{line + 1}'s state (tolerance {STATE_TOLERANCE} in each of "
+                        f"{line + 1}'s state (tolerance {self.state_tolerance:g} in each of "
                         f"{', '.join(names)})", line + 1, (claimed[0], claimed[1]))
         self.path_length = length
-        collision_free = self.passed(6, f"{n} steps of {self.system.slices} slices")
+        collision_free = self.passed(6, self.motion_summary(n))
         if mismatch is not None:
             return collision_free, mismatch.result
         return collision_free, self.passed(7)
@@ -431,6 +449,130 @@ class _Validation:
                 results.extend(self.check_kinodynamic_motion())
             else:
                 results.append(self.check_point_collisions())
+        except _Failed as failure:
+            results.append(failure.result)
+        return results
+
+
+KINOPLAN_TOLERANCE = 1e-6
+"""SPEC 5.5, checks 4 and 7: each variable within this, angles modulo 2 pi."""
+
+
+def _gaps(space, a, b) -> list[float]:
+    """Per variable |a - b|, angles by their wrapped difference."""
+    return [abs(math.remainder(y - x, 2 * math.pi)) if v.angle else abs(y - x)
+            for v, x, y in zip(space.variables, a, b)]
+
+
+class _KinoplanValidation(_Validation):
+    """SPEC 5.5's checks for a kinodynamic ``kinoplan 1`` answer: the same order,
+    messages and verdicts as SPEC 3, over full states. ``-strict`` changes
+    nothing here: every slice of every line is checked already."""
+
+    state_tolerance = KINOPLAN_TOLERANCE
+
+    def __init__(self, si: KinoplanSpaceInformation, strict: bool, limits: Limits):
+        self.si, self.system, self.strict, self.limits = si, si.system, strict, limits
+        self.problem, self.world = si.problem, si.world
+        self.plan = None
+        self.warnings, self.corner_cuts = [], []
+        self.path_length = self.final_state = None
+        self.last_slices = []
+        self.n = len(self.system.state_names)
+
+    def invalid_place(self, state) -> str:
+        return f"{_angle(*state[:self.n])}: {self.si.invalid_reason(state[:self.n])}"
+
+    def where(self, state) -> tuple[float, float]:
+        i, j = self.system.position_indices
+        return (state[i], state[j])
+
+    def same_state(self, claimed, computed) -> bool:
+        return all(gap <= KINOPLAN_TOLERANCE for gap in _gaps(self.si.space, claimed, computed))
+
+    def motion_summary(self, n: int) -> str:
+        return f"{n} held controls, every slice valid"
+
+    def other_answer_hint(self, error: PlanParseError) -> str:
+        names = (*self.system.state_names, *self.system.control_names)
+        return f" ({self.system.name}: {len(names)} numbers a line, {' '.join(names)})"
+
+    # 1: the numbers per line, then K a positive integer
+    def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
+        result = super().check_parse(text, output_cap)
+        for index, row in enumerate(self.plan.trajectory_rows()):
+            k = row[-1]
+            if not (k >= 1 and k == int(k)):
+                line = self.line_of(index)
+                raise self.fail(1, PARSE_ERROR, f"line {line}: K = {k!r} (the last number) is "
+                                "not a positive integer", line)
+        return result
+
+    # 3
+    def check_bounds(self) -> CheckResult:
+        system, n = self.system, self.n
+        for index, row in enumerate(self.plan.trajectory_rows()):
+            why = system.bounds_violation(row[:n]) or system.control_violation(row[n:])
+            if why is not None:
+                line = self.line_of(index)
+                raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
+        return self.passed(3)
+
+    # 4
+    def check_start(self) -> CheckResult:
+        row = self.plan.trajectory_row(0)[:self.n]
+        start, line = self.si.start, self.line_of(0)
+        gaps = _gaps(self.si.space, row, start)
+        if not all(gap <= KINOPLAN_TOLERANCE for gap in gaps):
+            name = self.system.state_names[max(range(self.n), key=gaps.__getitem__)]
+            raise self.fail(4, NOT_AT_START, f"line {line}: first state {_angle(*row)}, start "
+                            f"{_angle(*start)} ({name} is {_num(max(gaps))} off; tolerance "
+                            f"{KINOPLAN_TOLERANCE:g} per variable, angles modulo 2 pi)", line,
+                            self.where(row))
+        return self.passed(4)
+
+    # 5
+    def check_goal(self) -> CheckResult:
+        plan, goal = self.plan, self.si.goal
+        last = plan.trajectory_count - 1
+        row, line = plan.trajectory_row(last), self.line_of(last)
+        slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
+        self.last_slices = slices
+        end = self.final_state = slices[-1]
+        distance = goal.distance(end)
+        if not goal.accepts(end):
+            raise self.fail(5, NOT_AT_GOAL, f"line {line}: the last line's control "
+                            f"{_angle(*row[self.n:])} ends at {_angle(*end)}, {_num(distance)} "
+                            f"from the goal ({', '.join(goal.names)} within {goal.tolerance:g})",
+                            line, self.where(end))
+        return self.passed(5, f"ends {_num(distance)} from the goal")
+
+    def _motion(self, index: int, row, line: int) -> tuple[tuple, float]:
+        """A line's end state and its metric length over its slices."""
+        if not self.si.is_valid(row[:self.n]):
+            raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
+                            f"{self.invalid_place(row)}", line, self.where(row))
+        last = index == self.plan.trajectory_count - 1
+        slices = (self.last_slices if last and self.last_slices
+                  else self._slices_or_fail(6, SPACESHIP_COLLISION, row, line))
+        distance, state, length = self.si.space.distance, row[:self.n], 0.0
+        for sliced in slices:
+            length += distance(state, sliced)
+            state = sliced
+        return slices[-1], length
+
+    def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
+        results: list[CheckResult] = []
+        try:
+            if not self.system.kinodynamic:
+                raise self.fail(1, PARSE_ERROR, f"the {self.system.name} system is geometric: "
+                                "its answers cannot be checked yet", None)
+            results.append(self.check_parse(text, output_cap))
+            results.append(self.check_nonempty())
+            results.append(self.check_bounds())
+            results.append(self.check_start())
+            results.append(self.check_goal())
+            results.extend(self.check_kinodynamic_motion())
         except _Failed as failure:
             results.append(failure.result)
         return results
@@ -455,7 +597,8 @@ def validate_plan(si: SpaceInformation, output_text: str, strict: bool = False,
     bytes, when the planner's output was cut off at it (check 1 then fails).
     Never raises on any text.
     """
-    run = _Validation(si, strict, limits)
+    validation = _KinoplanValidation if isinstance(si, KinoplanSpaceInformation) else _Validation
+    run = validation(si, strict, limits)
     checks = run.run(output_text, output_cap_exceeded)
     return ValidationReport(si.system, strict, checks, run.warnings, run.corner_cuts, run.plan,
                             run.path_length, run.final_state)

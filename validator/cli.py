@@ -1,7 +1,11 @@
 """``rrt-validator``: run a planner on a problem and check its answer (SPEC 3).
 
     rrt-validator [-ugrad | -grad] [-left] [-strict] [-noviz] [-o FILE] [-timeout S]
-                  [-json] -- PLANNER [ARGS...] < problem.sw
+                  [-json] -- PLANNER [ARGS...] < problem.sw (or problem.kp)
+
+A ``kinoplan 1`` problem (SPEC 5, first word ``kinoplan``) names its own system:
+the vehicle flags are then a usage error, the checks are SPEC 5.5's, and no PDF
+is drawn yet (one note on stderr).
 
 argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
 stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
@@ -20,14 +24,16 @@ import sys
 from typing import Sequence
 
 from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, describe_os_error,
-                                    looks_like_problem_file, positive_float,
-                                    read_problem_from_stdin, reserve_standard_fds, say,
+                                    is_kinoplan, looks_like_problem_file, parse_any_problem,
+                                    positive_float, read_problem_text_from_stdin,
+                                    reject_vehicle_flags, reserve_standard_fds, say,
                                     vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
-from planning_core.problem_text import format_problem
+from planning_core.problem_text import ProblemFormatError, format_problem
+from planning_core.space_information import grid_space_information, kinoplan_space_information
 from planning_core.vehicles import Vehicle
 from validator.checks import (CHECK_NAMES, CHECK_TITLES, INVALID_VERDICT, CheckResult,
-                              ValidationReport, validate_output)
+                              ValidationReport, validate_plan)
 from validator.run_planner import DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun, run_planner
 
 EXIT_VALID = 0
@@ -45,9 +51,10 @@ def build_parser() -> argparse.ArgumentParser:
         prog=PROG,
         usage=f"{PROG} [-ugrad | -grad] [-left] [-strict] [-noviz] [-o FILE] [-timeout S] "
               "[-json] -- PLANNER [ARGS...] < problem.sw",
-        description="Read a .sw problem on stdin, run PLANNER ARGS (everything after --) "
-                    "with the problem on its stdin, check the trajectory it prints "
-                    "(SPEC 3, checks 1-7), print the verdict and draw the tree in a PDF.",
+        description="Read a problem on stdin (a .sw grid map, or a kinoplan 1 problem), run "
+                    "PLANNER ARGS (everything after --) with the problem on its stdin, check "
+                    "the trajectory it prints (SPEC 3, checks 1-7; kinoplan: SPEC 5.5), print "
+                    "the verdict and draw the tree in a PDF (.sw problems).",
         epilog="Exit status: 0 valid, 1 invalid, 2 usage error, bad problem or unwritable "
                "PDF, 3 the planner could not be started or timed out, 4 no verdict "
                "could be given.")
@@ -122,10 +129,15 @@ def _check_json(number: int, result: CheckResult | None, applicable: bool) -> di
             "line": result.line if result else None}
 
 
-def report_json(vehicle: Vehicle, strict: bool, report: ValidationReport | None,
-                run: PlannerRun, exit_status: int, pdf: str | None) -> dict:
+def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport | None,
+                run: PlannerRun, exit_status: int, pdf: str | None,
+                kinodynamic: bool | None = None) -> dict:
+    """The JSON object; ``vehicle`` is a Vehicle, or a kinoplan system's name with
+    ``kinodynamic`` saying whether check 7 applies."""
+    if isinstance(vehicle, Vehicle):
+        kinodynamic = vehicle.is_spaceship
     by_number = {check.number: check for check in report.checks} if report else {}
-    checks = [_check_json(n, by_number.get(n), n <= 6 or vehicle.is_spaceship)
+    checks = [_check_json(n, by_number.get(n), n <= 6 or bool(kinodynamic))
               for n in range(1, 8)]
     failure = report.first_failure if report else None
     return {
@@ -134,7 +146,7 @@ def report_json(vehicle: Vehicle, strict: bool, report: ValidationReport | None,
         "verdict_line": report.verdict if report else INVALID_VERDICT,
         "valid": bool(report and report.valid),
         "exit_status": exit_status,
-        "vehicle": vehicle.value,
+        "vehicle": getattr(vehicle, "value", vehicle),
         "strict": strict,
         "checks": checks,
         "first_failure": _check_json(failure.number, failure, True) if failure else None,
@@ -204,8 +216,9 @@ def _separator_hint(argv: list[str], extras: list[str]) -> tuple[str, ...]:
     return (f"the planner's command goes after --: {suggestion} < problem.sw",)
 
 
-def _parse_command_line(argv: list[str]) -> tuple[argparse.Namespace, Vehicle, list[str]]:
-    """Our flags, the vehicle and the planner's command; a usage error exits 2."""
+def _parse_command_line(argv: list[str]):
+    """Our flags, the vehicle, the planner's command and the parser; a usage error
+    exits 2."""
     has_separator = "--" in argv
     split = argv.index("--") if has_separator else len(argv)
     own, command = argv[:split], argv[split + 1:]
@@ -221,17 +234,17 @@ def _parse_command_line(argv: list[str]) -> tuple[argparse.Namespace, Vehicle, l
         why = _output_path_problem(args.o)
         if why is not None:
             parser.error(f"-o {args.o!r}: cannot write the PDF there ({why})")
-    return args, vehicle, command
+    return args, vehicle, command, parser
 
 
-def _validate(run: PlannerRun, problem: Problem, vehicle: Vehicle, strict: bool
+def _validate(run: PlannerRun, si, strict: bool
               ) -> tuple[ValidationReport | None, int, str]:
     """The report (None when the planner did not run to the end), status, verdict."""
     if not run.ran_to_completion:
         return None, EXIT_PLANNER_FAILED, INVALID_VERDICT
-    report = validate_output(problem, vehicle, decode_output(run.output), strict=strict,
-                             output_cap_exceeded=run.output_cap if run.output_cap_exceeded
-                             else None)
+    report = validate_plan(si, decode_output(run.output), strict=strict,
+                           output_cap_exceeded=run.output_cap if run.output_cap_exceeded
+                           else None)
     return report, EXIT_VALID if report.valid else EXIT_INVALID, report.verdict
 
 
@@ -247,21 +260,49 @@ def _summary(run: PlannerRun, report: ValidationReport | None, pdf: str | None) 
     return f"{PROG}: " + "; ".join(summary)
 
 
+def _read_problem(parser, args, vehicle: Vehicle):
+    """``(problem, its text for the planner, SpaceInformation)``, or None after one
+    line on stderr (a bad problem: exit 2); vehicle flags with a kinoplan problem
+    are a usage error."""
+    text = read_problem_text_from_stdin(PROG)
+    if text is None:
+        return None
+    try:
+        problem = parse_any_problem(text)
+    except ProblemFormatError as error:
+        say(f"{PROG}: bad problem: {error}")
+        return None
+    if is_kinoplan(problem):
+        reject_vehicle_flags(parser, args)
+        if not problem.system.kinodynamic:
+            say(f"{PROG}: error: answers for the geometric {problem.system_name} system "
+                "cannot be checked yet (kinodynamic kinoplan systems only)")
+            return None
+        # The reader accepts ASCII only: the text goes to the planner as it came.
+        return problem, text.encode("ascii"), kinoplan_space_information(problem)
+    return (problem, format_problem(problem).encode("ascii"),
+            grid_space_information(problem, vehicle))
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    args, vehicle, command = _parse_command_line(argv)
-    problem = read_problem_from_stdin(PROG)
-    if problem is None:
+    args, vehicle, command, parser = _parse_command_line(argv)
+    found = _read_problem(parser, args, vehicle)
+    if found is None:
         return EXIT_USAGE
+    problem, problem_bytes, si = found
+    kinoplan = is_kinoplan(problem)
     label = _stdin_label()
 
-    run = run_planner(command, format_problem(problem).encode("ascii"), timeout=args.timeout,
+    run = run_planner(command, problem_bytes, timeout=args.timeout,
                       output_cap=DEFAULT_OUTPUT_CAP)
     messages = solver_messages(run)
-    report, status, verdict = _validate(run, problem, vehicle, args.strict)
+    report, status, verdict = _validate(run, si, args.strict)
 
     pdf = None
-    if not args.noviz:
+    if kinoplan and not args.noviz:
+        say(f"{PROG}: no PDF for kinoplan problems yet (as with -noviz)")
+    elif not args.noviz:
         try:
             if _write_pdf(args.o, problem, vehicle, report, verdict, messages, label):
                 pdf = args.o
@@ -271,8 +312,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     if args.json:
         import json  # only for -json
-        out = json.dumps(report_json(vehicle, args.strict, report, run, status, pdf),
-                         allow_nan=False) + "\n"
+        shown = problem.system_name if kinoplan else vehicle
+        out = json.dumps(report_json(shown, args.strict, report, run, status, pdf,
+                                     si.system.kinodynamic), allow_nan=False) + "\n"
     else:
         out = "".join(f"{message}\n" for message in messages)
         out += report_text(report) if report is not None else f"{verdict}\n"

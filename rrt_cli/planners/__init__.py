@@ -26,6 +26,8 @@ class PlannerEntry:
     module: str
     kinds: frozenset
     summary: str
+    kinoplan: bool = False
+    """It plans for the kinodynamic systems of ``kinoplan 1`` problems (SPEC 5) too."""
 
     def load(self):
         return importlib.import_module(self.module)
@@ -33,13 +35,18 @@ class PlannerEntry:
     def plans_for(self, system) -> bool:
         return system_kind(system) in self.kinds
 
+    def plans_for_kinoplan(self, system) -> bool:
+        """A kinoplan system: only the kinodynamic ones, by the planners that say so."""
+        return self.kinoplan and system.kinodynamic and self.plans_for(system)
+
 
 PLANNERS: dict[str, PlannerEntry] = {
     "kpiece": PlannerEntry("rrt_cli.planners.kpiece", KINODYNAMIC,
                            "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)"),
     "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", KINODYNAMIC,
                           "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)"),
-    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner"),
+    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner",
+                        kinoplan=True),
     "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", GEOMETRIC,
                                "bidirectional RRT-Connect (Kuffner & LaValle 2000)"),
     "prm": PlannerEntry("rrt_cli.planners.prm", GEOMETRIC,

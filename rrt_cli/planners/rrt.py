@@ -1,24 +1,25 @@
 """RRT (LaValle 1998, "Rapidly-exploring random trees: a new tool for path
 planning"), as the course's reference planner runs it, for any system.
 
-Each iteration draws a target (the goal with probability ``goal_bias``, else a
-uniform point of the map), finds the tree node nearest to it by position and
-extends that node toward it with the system's steering (straight lines for a
-geometric system, the best of random controls for a kinodynamic one). The search
-ends at the first node in the goal region, like OMPL's RRT with its default
-"stop at first solution".
+Each iteration draws a target (the goal with probability ``goal_bias``, else
+``si.sample_target``: a uniform point of the map, or a uniform state of a
+kinoplan system's space), finds the tree node nearest to it (``si.new_nearest``:
+by position on the grid, by the metric for kinoplan) and extends that node
+toward it with the system's steering (straight lines for a geometric system, the
+best of random controls for a kinodynamic one). The search ends at the first
+node in the goal region, like OMPL's RRT with its default "stop at first
+solution".
 """
 
 from __future__ import annotations
 
+import dataclasses
 import random
 import time
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
-from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import goal_vertex
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree
 
@@ -48,19 +49,21 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
     steering = make_steering(si, params)
     goal = si.goal
     tree = MotionTree(si.start)
-    index = QuadtreeNearest(si.world.width, si.world.height)
-    index.add(si.start[0], si.start[1])
+    index = si.new_nearest()
+    index.add(si.start)
     system = si.system
 
     if goal.reached(si.start):
-        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+        # A kinoplan start may drift out of the goal under any held control: then plan.
+        controls = si.start_in_goal_controls()
+        if controls is not None:
+            solved = tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+            return dataclasses.replace(solved, path_controls=controls) if controls else solved
     if si.goal_certainly_unreachable(stop.time_is_up):
         return tree.result(system, PlanStatus.UNREACHABLE, None, 0, began,
                            "no chain of free cells joins the start and the goal")
 
-    # The goal itself, unless it lies on the map's left or bottom edge: a node
-    # there could not be printed (points print strictly inside the map).
-    goal_target = goal_vertex(si.world, goal.point)
+    goal_target = si.goal_target
     iterations = 0
     while True:
         limit = stop.status(iterations)
@@ -68,16 +71,16 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
         if rng.random() < params.goal_bias:
-            target = goal_target
+            target = goal_target(rng)
         else:
             target = si.sample_target(rng)
-        near = index.nearest(*target)
+        near = index.nearest(target)
         step = steering.extend(tree.states[near], target, rng)
         if step is None:
             continue
         new_state, control = step
         node = tree.add(near, new_state, control)
-        index.add(new_state[0], new_state[1])
+        index.add(new_state)
         if goal.reached(new_state):
             return tree.result(system, PlanStatus.SOLVED, node, iterations, began)
 

@@ -3,8 +3,10 @@
 Geometric systems go straight to the target when the motion is free (checked
 exactly); otherwise, with ``partial_extension``, toward the first invalid state,
 stopping ``wall_clearance`` short of it. Kinodynamic systems try
-``controls_per_extension`` random controls, each held for one step; the valid
-one ending closest to the target (by position) wins (SPEC 2).
+``controls_per_extension`` random controls, each held for one step (kinoplan
+systems: K slices, K drawn with the control); the valid one ending closest to
+the target by ``si.closeness`` wins (SPEC 2: by position on the grid; SPEC 5.3:
+by the metric for kinoplan systems).
 """
 
 from __future__ import annotations
@@ -48,18 +50,19 @@ class ControlSamplingSteering:
         self.si = si
         self.controls_per_extension = controls_per_extension
 
-    def extend(self, state: tuple[float, ...], target: tuple[float, float],
+    def extend(self, state: tuple[float, ...], target: tuple[float, ...],
                rng: random.Random):
-        tx, ty = target
         best = None
         best_d2 = math.inf
-        sample_control, propagate_valid = self.si.sample_control, self.si.propagate_valid
+        si = self.si
+        sample_control, propagate_valid, closeness = (si.sample_control, si.propagate_valid,
+                                                      si.closeness)
         for _ in range(self.controls_per_extension):
             control = sample_control(rng)
             end = propagate_valid(state, control)
             if end is None:
                 continue
-            d2 = (end[0] - tx) ** 2 + (end[1] - ty) ** 2
+            d2 = closeness(end, target)
             if d2 < best_d2:
                 best, best_d2 = (end, control), d2
         return best
