@@ -51,7 +51,7 @@ def main(argv: list[str] | None = None) -> int:
     width = height = 50
     # Open map: no early exits, the worst case.
     problem = Problem(width, height, bytes(width * height), (1.0, 1.0), (2.0, 2.0))
-    position_free = GridWorld(problem).point_free
+    grid = GridWorld(problem)
     propagate_while = spaceship.SYSTEM.propagate_while
     blocked_array = np.zeros((height, width), dtype=bool)
     rng = random.Random(0)
@@ -62,7 +62,7 @@ def main(argv: list[str] | None = None) -> int:
 
     def pure_python():
         for control in controls:
-            propagate_while(state, control, position_free)
+            propagate_while(state, control, grid)
 
     def batched():
         numpy_batch(np, state, thetas, thrusts, blocked_array, width, height)

@@ -182,7 +182,7 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
     controls.setBounds(_bounds(ob, (0.0, 0.0), (theta_range, spaceship.MAX_THRUST)))
     info = oc.SpaceInformation(space, controls)
     propagate_while = spaceship.SYSTEM.propagate_while
-    position_free = GridWorld(problem).point_free
+    grid = GridWorld(problem)
     tree: list[tuple[float, ...]] = []
 
     def is_valid(state) -> bool:
@@ -193,7 +193,7 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
         # duration is always one step of 1.0 (setMinMaxControlDuration(1, 1)).
         state = (start[0], start[1], start[2], start[3])
         applied = (control[0], control[1])
-        end = propagate_while(state, applied, position_free)
+        end = propagate_while(state, applied, grid)
         if end is None or not (end[0] > 0.0 and end[1] > 0.0):
             result[0], result[1], result[2], result[3] = -1.0, -1.0, 0.0, 0.0  # invalid
             return

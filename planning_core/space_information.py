@@ -37,6 +37,7 @@ class SpaceInformation:
         # Bound once: these run in the planners' inner loops.
         self.position_free = world.point_free
         self.printable = world.point_strictly_inside
+        self.sample_control = getattr(system, "sample_control", None)  # kinodynamic only
 
     @property
     def space(self):
@@ -51,7 +52,7 @@ class SpaceInformation:
     def propagate_valid(self, state, control):
         """Kinodynamic: where ``control`` leads from ``state`` if every slice is
         valid and the end prints strictly inside the map; else None."""
-        end = self.system.propagate_while(state, control, self.position_free)
+        end = self.system.propagate_while(state, control, self.world)
         if end is None or not (end[0] > 0.0 and end[1] > 0.0):
             return None
         return end
@@ -65,9 +66,6 @@ class SpaceInformation:
     def sample_target(self, rng: random.Random) -> tuple[float, float]:
         """A uniform position of the open map (blocked cells included)."""
         return self.world.sample_open_position(rng)
-
-    def sample_control(self, rng: random.Random):
-        return self.system.sample_control(rng)
 
     def goal_target(self, rng: random.Random) -> tuple[float, float]:
         """The goal-biased target: the goal point, nudged inside the map when it lies

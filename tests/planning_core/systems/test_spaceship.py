@@ -36,6 +36,6 @@ def test_collision_on_any_slice_returns_none():
     # Fast toward +x from (1.5, 1.5): crosses blocked cell (2, 1) mid-step, ends beyond it.
     state = (1.5, 1.5, 1.6, 0.0)
     assert spaceship.SYSTEM.propagate(state, (0.0, 0.0))[0] > 3.0
-    assert spaceship.SYSTEM.propagate_while(state, (0.0, 0.0), world.point_free) is None
+    assert spaceship.SYSTEM.propagate_while(state, (0.0, 0.0), world) is None
     assert spaceship.SYSTEM.propagate_while((0.5, 2.5, 0.2, 0.0), (0.0, 0.0),
-                                            world.point_free) is not None
+                                            world) is not None

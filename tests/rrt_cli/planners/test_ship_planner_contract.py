@@ -83,9 +83,9 @@ def test_walled_in_goal_ends_at_the_iteration_limit(planner):
     assert result.stats.iterations == 2000
     # Every edge of the tree it grew is one collision-free step.
     assert len(result.tree) == result.stats.tree_nodes - 1 > 0
-    position_free = GridWorld(problem).point_free
+    grid = GridWorld(problem)
     for row in result.tree:
-        assert spaceship.SYSTEM.propagate_while(row[:4], row[4:], position_free) is not None
+        assert spaceship.SYSTEM.propagate_while(row[:4], row[4:], grid) is not None
 
 
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
