@@ -42,10 +42,10 @@ _BAD_CHAR = re.compile(r"[^\t\n\v\f\r\x20-\x7e]")
 _ITEM = re.compile(r"^[ \t\v\f\r]*([^\s#][^\n]*)", re.M)
 _SYSTEM_LINE = re.compile(r"^[ \t\v\f\r]*system(?![^\s#])", re.M)
 _TOKEN = re.compile(r"\S+")
-_DECIMAL = r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+_DECIMAL = r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"  # unambiguous: linear time
 _NUMBER = re.compile(rf"[+-]?{_DECIMAL}")
 _PI = re.compile(rf"(-?)(?:({_DECIMAL})\*)?pi(?:/({_DECIMAL}))?")
-_INTEGER = re.compile(r"[+-]?(\d+)")
+_INTEGER = re.compile(r"[+-]?([0-9]+)")
 _NON_FINITE = re.compile(r"[+-]?(nan|inf|infinity)", re.IGNORECASE)
 
 

@@ -367,3 +367,18 @@ def test_any_edit_gives_a_problem_or_one_format_error(base, edits):
         assert error.line >= 1 and error.column >= 1 and "\n" not in error.message
     else:
         assert state_valid(problem.system, problem.world, problem.start)
+
+
+def test_a_long_digit_run_is_refused_in_linear_time():
+    """200 000 digits and a bad character: one error line; a backtracking number
+    pattern took 40 s on a tenth of this (quadratic), so a hang fails the timeout."""
+    import subprocess
+    import sys
+    code = ("from planning_core.kinoplan_text import parse_kinoplan\n"
+            "from planning_core.problem_text import ProblemFormatError\n"
+            "text = 'kinoplan 1\\nsystem pendulum\\nstart theta ' + '1' * 200000 + 'x omega 0\\n'\n"
+            "try:\n    parse_kinoplan(text)\nexcept ProblemFormatError as error:\n"
+            "    print(error)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=30)
+    assert "line 3, column 13" in done.stdout and "is not a number" in done.stdout
