@@ -25,12 +25,11 @@ try:
 except ModuleNotFoundError:  # run as a script from a checkout that is not installed
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from benchmarks import ompl_adapters
-from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, positive_float,
-                                    read_problem_from_stdin, vehicle_from_flags)
+from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
+                                    positive_float, read_problem_from_stdin, vehicle_from_flags)
 from planning_core.plan_text import format_plan
 
 EXIT_SOLVED = 0
-EXIT_USAGE = 2
 EXIT_NO_SOLUTION = 3
 EXIT_NO_OMPL = 4
 DEFAULT_TIME_LIMIT = 30.0

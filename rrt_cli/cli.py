@@ -16,11 +16,11 @@ import argparse
 import dataclasses
 import random
 
-from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, is_kinoplan, positive_float,
-                                    positive_int, read_any_problem_from_stdin,
-                                    reject_vehicle_flags, reserve_standard_fds, say, seed,
-                                    vehicle_from_flags, write_stdout)
+from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
+                                    describe_os_error, is_kinoplan, positive_float, positive_int,
+                                    read_any_problem_from_stdin, reject_vehicle_flags,
+                                    reserve_standard_fds, say, seed, vehicle_from_flags,
+                                    write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.space_information import grid_space_information, kinoplan_space_information
 from rrt_cli.planners import PLANNERS
@@ -29,7 +29,6 @@ from rrt_cli.smoothing import smooth_path
 
 EXIT_SOLVED = 0
 EXIT_OUTPUT_FAILED = 1
-EXIT_USAGE = 2
 EXIT_NO_SOLUTION = 3
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
@@ -49,7 +48,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="random seed, an integer in [0, 2^64); the same seed gives the "
                              "same output byte for byte")
     parser.add_argument("-time", type=positive_float, default=DEFAULT_TIME_LIMIT,
-                        metavar="S", help=f"time limit in seconds (default: {DEFAULT_TIME_LIMIT:g})")
+                        metavar="S",
+                        help=f"time limit in seconds, set-up included (default: "
+                             f"{DEFAULT_TIME_LIMIT:g})")
     parser.add_argument("-iterations", type=positive_int, default=DEFAULT_ITERATIONS,
                         metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")
     parser.add_argument("-smooth", action="store_true",

@@ -23,11 +23,11 @@ import stat
 import sys
 from typing import Sequence
 
-from planning_core.cli_args import (OneLineErrorParser, add_vehicle_flags, describe_os_error,
-                                    is_kinoplan, looks_like_problem_file, parse_any_problem,
-                                    positive_float, read_problem_text_from_stdin,
-                                    reject_vehicle_flags, reserve_standard_fds, say,
-                                    vehicle_from_flags, write_stdout)
+from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
+                                    describe_os_error, is_kinoplan, looks_like_problem_file,
+                                    parse_any_problem, positive_float,
+                                    read_problem_text_from_stdin, reject_vehicle_flags,
+                                    reserve_standard_fds, say, vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.space_information import grid_space_information, kinoplan_space_information
@@ -38,7 +38,6 @@ from validator.run_planner import DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRu
 
 EXIT_VALID = 0
 EXIT_INVALID = 1
-EXIT_USAGE = 2
 EXIT_PLANNER_FAILED = 3
 EXIT_NO_VERDICT = 4  # no verdict could be given: stdout failed, or a validator bug
 EXIT_INTERNAL_ERROR = EXIT_NO_VERDICT
