@@ -39,11 +39,19 @@ def planners_left() -> list[int]:
     return found
 
 
+def _as_at_a_terminal() -> None:
+    """Ctrl-C's default action, as a command typed at a terminal has it: a test run
+    started in the background by a script inherits SIGINT ignored (POSIX), and so
+    would every process it starts."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start(out, *extra) -> subprocess.Popen:
     env = dict(os.environ, PYTHONPATH=str(catalog.ROOT))
     return subprocess.Popen([sys.executable, "-m", "benchmarks", *RUN, *extra, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env=env, cwd=catalog.ROOT, start_new_session=True)
+                            env=env, cwd=catalog.ROOT, start_new_session=True,
+                            preexec_fn=_as_at_a_terminal)
 
 
 def wait_for_rows(csv_path, count: int, timeout: float = 60) -> None:
