@@ -21,10 +21,6 @@ from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
 
-# Moves a goal on the map's left or bottom edge (free, not printable) inward, as
-# rrt_cli/planners/point_common.goal_vertex does: far below the 0.1 tolerance.
-_EDGE_NUDGE = 1e-6
-
 
 class SpaceInformation:
     """A system moving in a world from a start toward a goal region."""
@@ -70,10 +66,7 @@ class SpaceInformation:
     def goal_target(self, rng: random.Random) -> tuple[float, float]:
         """The goal-biased target: the goal point, nudged inside the map when it lies
         on the left or bottom edge (a node there could not be printed). No ``rng``."""
-        x, y = self.goal.point
-        if self.printable(x, y):
-            return (x, y)
-        return (max(x, _EDGE_NUDGE), max(y, _EDGE_NUDGE))
+        return self.world.printable_point(self.goal.point)
 
     # -- nearest and closeness: by position on the grid --------------------------
     def new_nearest(self) -> "PositionNearest":

@@ -25,6 +25,9 @@ from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
 
 SAMPLE_STEP = 0.05
+# How far a point on the map's left or bottom edge (free, not printable) moves inward:
+# far below the 0.1 goal tolerance and far inside its cell.
+EDGE_NUDGE = 1e-6
 LIST_MAX_CELLS = 1 << 20
 """Maps up to this many cells keep their cells as a list, which the hot loops index
 a few percent faster than bytes (8 bytes a cell); larger maps share the problem's bytes."""
@@ -57,6 +60,15 @@ class GridWorld:
     def point_strictly_inside(self, x: float, y: float) -> bool:
         """Printed points must satisfy ``0 < x < W`` and ``0 < y < H`` (SPEC 2)."""
         return 0.0 < x < self.width and 0.0 < y < self.height
+
+    def printable_point(self, point: Sequence[float]) -> tuple[float, float]:
+        """A free point where a path may end: itself when it prints strictly inside
+        the map, else moved ``EDGE_NUDGE`` inward. A free point lies in ``[0, W) x
+        [0, H)``, so only ``x == 0`` or ``y == 0`` moves, and it stays in its cell."""
+        x, y = point[0], point[1]
+        if self.point_strictly_inside(x, y):
+            return (x, y)
+        return (max(x, EDGE_NUDGE), max(y, EDGE_NUDGE))
 
     def sample_open_position(self, rng: random.Random) -> tuple[float, float]:
         """Uniform in the open map ``(0, W) x (0, H)``, blocked cells included, so

@@ -33,7 +33,7 @@ from planning_core.worlds.grid_cells import sample_free_point
 from rrt_cli.graph_search import astar
 from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import first_blocked_segment, goal_vertex, path_length
+from rrt_cli.planners.point_common import first_blocked_segment, path_length
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
 
@@ -154,7 +154,7 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
     world = si.world
     roadmap = Roadmap(world)
     roadmap.add_vertex(*si.start, neighbors=0)
-    roadmap.add_vertex(*goal_vertex(world, si.goal.point), neighbors=1)
+    roadmap.add_vertex(*world.printable_point(si.goal.point), neighbors=1)
 
     def result(status: PlanStatus, path: list[int] | None, iterations: int, message=""):
         trajectory = () if path is None else tuple(roadmap.points(path))

@@ -37,7 +37,6 @@ from planning_core.worlds.grid_cells import sample_free_point
 from planning_core.worlds.grid_frontier import FrontierCells
 from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import goal_vertex
 from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree
 
@@ -164,7 +163,7 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
         raise ValueError("rrtconnect plans for geometric systems only")
     began = time.perf_counter()
     width, height = si.world.width, si.world.height
-    start, goal = si.start, goal_vertex(si.world, si.goal.point)
+    start, goal = si.start, si.world.printable_point(si.goal.point)
     start_tree = _Tree(start, width, height, toward_root=False)
     goal_tree = _Tree(goal, width, height, toward_root=True)
 
