@@ -36,6 +36,7 @@ import argparse
 import os
 import random
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -144,16 +145,21 @@ def hot_path_rows(repeats: int) -> list[str]:
 LAUNCHER = ROOT / "benchmarks" / "launch.py"
 
 
-def measured_run(argv: list[str], problem_path: str) -> tuple[int, float, float, str]:
+def measured_run(argv: list[str], problem_path: str,
+                 limit_bytes: int | None = None) -> tuple[int, float, float, str]:
     """Exit status, wall seconds, peak RSS in MB (the planner's own, through
-    launch.py) and stderr of ``python -m rrt_cli argv < problem_path``."""
+    launch.py: a child's peak counts the process it was forked from) and stderr of
+    ``python -m rrt_cli argv < problem_path``; ``limit_bytes`` caps the address space."""
+    def cap_memory():
+        resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
+
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     with open(problem_path, "rb") as stdin, tempfile.TemporaryFile() as err, \
             tempfile.NamedTemporaryFile("r", suffix=".txt") as report:
         subprocess.run([sys.executable, "-S", "-I", str(LAUNCHER), report.name,
                         sys.executable, "-m", "rrt_cli", *argv],
                        stdin=stdin, stdout=subprocess.DEVNULL, stderr=err, cwd=ROOT, env=env,
-                       check=True)
+                       preexec_fn=cap_memory if limit_bytes else None, check=True)
         status, wall, peak_kb = report.read().split()
         err.seek(0)
         return int(status), float(wall), int(peak_kb) / 1024, err.read().decode()

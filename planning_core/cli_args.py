@@ -262,14 +262,15 @@ def read_problem_text_from_stdin(prog: str, cap: int = MAX_PROBLEM_BYTES) -> str
     return raw.decode("utf-8", errors="replace")
 
 
-def read_problem_from_stdin(prog: str) -> Problem | None:
-    """The ``.sw`` problem on stdin; None after one ``PROG: ...`` line on stderr (a
-    ``bad problem`` names the line and column; the caller exits 2)."""
+def read_problem_from_stdin(prog: str, parse=None):
+    """The problem on stdin, read by ``parse`` (default: the ``.sw`` reader;
+    :func:`parse_any_problem` for either format); None after one ``PROG: ...`` line
+    on stderr (a ``bad problem`` names the line and column; the caller exits 2)."""
     text = read_problem_text_from_stdin(prog)
     if text is None:
         return None
     try:
-        return parse_problem(text)
+        return (parse or parse_problem)(text)
     except ProblemFormatError as error:
         say(f"{prog}: bad problem: {error}")
         return None
@@ -287,11 +288,6 @@ def parse_any_problem(text: str):
     return parse_problem(text)
 
 
-def read_any_problem_from_stdin(prog: str):
-    """:func:`read_problem_from_stdin` for either format (:func:`parse_any_problem`)."""
-    text = read_problem_text_from_stdin(prog)
-    if text is None:
-        return None
     try:
         return parse_any_problem(text)
     except ProblemFormatError as error:

@@ -17,10 +17,10 @@ import dataclasses
 import random
 
 from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, is_kinoplan, positive_float, positive_int,
-                                    read_any_problem_from_stdin, reject_vehicle_flags,
-                                    reserve_standard_fds, say, seed, vehicle_from_flags,
-                                    write_stdout)
+                                    describe_os_error, is_kinoplan, parse_any_problem,
+                                    positive_float, positive_int, read_problem_from_stdin,
+                                    reject_vehicle_flags, reserve_standard_fds, say, seed,
+                                    vehicle_from_flags, write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.space_information import grid_space_information, kinoplan_space_information
 from rrt_cli.planners import PLANNERS
@@ -71,7 +71,7 @@ def _space_information(parser, args, entry):
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
             f"{vehicle.value} vehicle")
         return None
-    problem = read_any_problem_from_stdin("rrt_cli")
+    problem = read_problem_from_stdin("rrt_cli", parse_any_problem)
     if problem is None:
         return None
     if is_kinoplan(problem):

@@ -6,17 +6,12 @@ runs out of memory ends with a result, not a traceback; on a 3000 x 3000 map
 
 from __future__ import annotations
 
-import os
 import random
-import resource
-import subprocess
-import sys
-import tempfile
-import time
 import tracemalloc
 
 import pytest
 
+from benchmarks.bench_setup import measured_run
 from planning_core.interrupt import POLL_EVERY, Interrupted
 from planning_core.problem import Problem
 from planning_core.space_information import grid_space_information
@@ -25,7 +20,6 @@ from planning_core.worlds.grid_cells import FreeCells
 from planning_core.worlds.grid_distance import CellDistanceToGoal
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import ROOT
 
 RUNS = [("point", "rrt"), ("point", "rrtconnect"), ("point", "prm"), ("point", "prmstar"),
         ("spaceship", "rrt"), ("spaceship", "kpiece"), ("spaceship", "rgrrt"),
@@ -208,29 +202,6 @@ def test_running_out_of_memory_is_a_result_not_a_traceback(vehicle, name, monkey
     result = PLANNERS[name].load().solve(si, StopCondition(time_limit=30), random.Random(1))
     assert result.status is PlanStatus.OUT_OF_MEMORY
     assert result.message and result.path == () and result.edges == ()
-
-
-LAUNCHER = ROOT / "benchmarks" / "launch.py"
-
-
-def measured_run(argv: list[str], problem_path: str, limit_bytes: int | None = None):
-    """Exit status, wall seconds, the planner's own peak RSS in MB, and stderr of
-    ``python -m rrt_cli argv < problem_path``, through the benchmarks' small
-    launcher (a child's peak counts the process it was forked from, so the test
-    process cannot be that parent); ``limit_bytes`` caps the address space."""
-    def cap_memory():
-        resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
-
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    with open(problem_path, "rb") as stdin, tempfile.TemporaryFile() as err, \
-            tempfile.NamedTemporaryFile("r", suffix=".txt") as report:
-        subprocess.run([sys.executable, "-S", "-I", str(LAUNCHER), report.name,
-                        sys.executable, "-m", "rrt_cli", *argv],
-                       stdin=stdin, stdout=subprocess.DEVNULL, stderr=err, cwd=ROOT, env=env,
-                       preexec_fn=cap_memory if limit_bytes else None, check=True)
-        status, wall, peak_kb = report.read().split()
-        err.seek(0)
-        return int(status), float(wall), int(peak_kb) / 1024, err.read().decode()
 
 
 @pytest.fixture(scope="module")
