@@ -20,10 +20,10 @@ import pytest
 
 from validator.checks import INVALID_VERDICT, VALID_VERDICT
 from validator.run_planner import DEFAULT_STDERR_CAP, run_planner
-from validator_testlib import PROBLEMS, ROOT, python_planner, run_validator
+from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone, python_planner,
+                              run_validator)
 
 SPACE0 = (PROBLEMS / "space-0.sw").read_text()
-VALID_POINT_PLAN = "4\n0.1 1.54\n1.5 2.5\n3.5 2.5\n3.8 1.1\n0\n"
 
 # Leaves the planner's session and process group, says where it is, sleeps.
 SETSID_SLEEPER = ("import os, sys, time\n"
@@ -62,14 +62,6 @@ def planner_with_daemon(pid_file: Path) -> list[str]:
             f"sys.stdout.write({VALID_POINT_PLAN!r})\n")
     return python_planner(code)
 
-
-def gone(pid: int) -> bool:
-    """Dead: no such process, or a zombie (its parent has not reaped it yet)."""
-    try:
-        status = Path(f"/proc/{pid}/status").read_text()
-    except FileNotFoundError:
-        return True
-    return "\nState:\tZ" in status
 
 
 def gone_within(pid: int, seconds: float) -> bool:

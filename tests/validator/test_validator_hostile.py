@@ -8,24 +8,14 @@ import os
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 from planning_core.problem_text import format_problem, parse_problem
 from validator.checks import INVALID_VERDICT, VALID_VERDICT
 from validator.run_planner import run_planner
-from validator_testlib import PROBLEMS, ROOT, python_planner, run_validator
+from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone, python_planner,
+                              run_validator)
 
 SPACE0 = (PROBLEMS / "space-0.sw").read_text()
-VALID_POINT_PLAN = "4\n0.1 1.54\n1.5 2.5\n3.5 2.5\n3.8 1.1\n0\n"
-
-
-def _gone(pid: int) -> bool:
-    """Dead: no such process, or a zombie waiting for init to reap it."""
-    try:
-        status = Path(f"/proc/{pid}/status").read_text()
-    except FileNotFoundError:
-        return True
-    return "\nState:\tZ" in status
 
 
 # run_planner, in-process -----------------------------------------------------
@@ -74,7 +64,7 @@ def test_planner_sleeping_past_the_timeout_exits_3_promptly(tmp_path):
     out = done.stdout.decode().splitlines()
     assert out == ["Solver timed out after 1 s; its process group was killed.", INVALID_VERDICT]
     assert elapsed < 6
-    assert _gone(int(pid_file.read_text()))  # the whole group, not just the leader
+    assert gone(int(pid_file.read_text()))  # the whole group, not just the leader
     assert (tmp_path / "tree-viz.pdf").stat().st_size > 0  # no stale PDF left behind
 
 
@@ -151,7 +141,7 @@ def test_planner_leaving_a_child_holding_stdout_does_not_stall_it(tmp_path):
     began = time.monotonic()
     done = run_validator(["-noviz", "-timeout", "30", "--", *planner], SPACE0, tmp_path)
     assert done.returncode == 0 and time.monotonic() - began < 6
-    assert _gone(int(pid_file.read_text()))
+    assert gone(int(pid_file.read_text()))
 
 
 def test_planner_closing_stdout_and_running_on_times_out(tmp_path):
@@ -202,4 +192,4 @@ def test_terminating_the_validator_kills_the_planner_group(tmp_path):
     assert validator.wait(timeout=10) == 128 + 15
     validator.stdout.close()
     validator.stderr.close()
-    assert _gone(int(pid_file.read_text()))
+    assert gone(int(pid_file.read_text()))

@@ -91,3 +91,16 @@ def colour_near(image, page_point, rgb, scale: float, radius: int = 2,
                     abs(a - b) <= tolerance for a, b in zip(image.getpixel((x, y)), target)):
                 return True
     return False
+
+
+# A point answer to the course's space-0 that the validator accepts.
+VALID_POINT_PLAN = "4\n0.1 1.54\n1.5 2.5\n3.5 2.5\n3.8 1.1\n0\n"
+
+
+def gone(pid: int) -> bool:
+    """Dead: no such process, or a zombie (its parent has not reaped it yet)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except FileNotFoundError:
+        return True
+    return "\nState:\tZ" in status
