@@ -63,7 +63,6 @@ def planner_with_daemon(pid_file: Path) -> list[str]:
     return python_planner(code)
 
 
-
 def gone_within(pid: int, seconds: float) -> bool:
     deadline = time.monotonic() + seconds
     while not gone(pid):
