@@ -330,7 +330,7 @@ class _Validation:
             x, y = row
             what = f"the last point {_point(x, y)}"
         distance = goal.distance((x, y))
-        if not distance <= goal.tolerance:
+        if not goal.accepts((x, y)):
             raise self.fail(5, NOT_AT_GOAL, f"line {line}: {what}, {_num(distance)} from the "
                             f"goal {_point(gx, gy)} (at most {goal.tolerance})", line, (x, y))
         return self.passed(5, f"ends {_num(distance)} from the goal")

@@ -22,8 +22,3 @@ class Vehicle(str, Enum):
     @property
     def is_spaceship(self) -> bool:
         return self.system.kinodynamic
-
-    @property
-    def line_fields(self) -> int:
-        """Numbers per trajectory line in the plan format."""
-        return 2 if self is Vehicle.POINT else 6
