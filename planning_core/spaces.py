@@ -249,7 +249,7 @@ def _check(variables: tuple[Variable, ...], groups: tuple[Group, ...]) -> None:
 
 def compile_distance(variables: Sequence[Variable],
                      groups: Sequence[Group]) -> Callable[[State, State], float]:
-    """``distance(a, b)`` unrolled for these groups (about 3x faster than the loop).
+    """``distance(a, b)`` unrolled for these groups (faster than the loop: docs/parameter-history.md).
 
     Generated source, as ``dataclasses`` generates ``__init__``: for SE(2) with
     ``metric x,y 0.7 theta 0.3`` the body is ``d0 = b[0] - a[0]; d1 = ...;
@@ -269,7 +269,7 @@ def compile_metric_sum(name: str, lines: list[str], groups, prefix: str,
     """Finish generated source whose ``lines`` set ``{prefix}{i}`` for each
     variable ``i`` with the metric's sum over groups, ``W0 * _sqrt(d0 * d0 + d1 *
     d1) + W1 * abs(d2)``, then compile it and return the function ``name``. (Generated
-    once per space: it is about 3x faster than a loop over the groups.)"""
+    once per space, as planners call it in inner loops; docs/parameter-history.md.)"""
     terms = []
     namespace.update(_sqrt=math.sqrt, TAU=TAU)
     for k, (indices, weight) in enumerate(groups):

@@ -108,8 +108,8 @@ class Spaceship:
         ``blocked`` cells, ``width`` and ``height``, such as a GridWorld): None is
         returned as soon as a slice's position is outside it or in a blocked cell
         (SPEC 1). The test is written inline, not called: this loop is the ship
-        planners' hot path, and a call per slice cost them about 10%. With
-        ``slices_out``, the state after every slice is appended to it.
+        planners' hot path (docs/parameter-history.md). With ``slices_out``, the
+        state after every slice is appended to it.
         """
         x, y, dx, dy = state
         theta, thrust = control

@@ -30,7 +30,8 @@ SAMPLE_STEP = 0.05
 EDGE_NUDGE = 1e-6
 LIST_MAX_CELLS = 1 << 20
 """Maps up to this many cells keep their cells as a list, which the hot loops index
-a few percent faster than bytes (8 bytes a cell); larger maps share the problem's bytes."""
+faster than bytes (8 bytes a cell; docs/parameter-history.md); larger maps share the
+problem's bytes."""
 
 
 @dataclass(frozen=True)
