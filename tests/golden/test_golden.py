@@ -1,5 +1,6 @@
 """Planner output pinned byte for byte: each run's stdout hashes to what
-``golden.json`` recorded before the core was reshaped (issue 13)."""
+``golden.json`` recorded before the core was reshaped (issue 13), and passes the
+validator's checks (with ``strict``)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,12 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from golden_cases import PROBLEM_DIR, SEEDS, SLOW, argv, case_id, cases  # noqa: E402
 
+from planning_core.problem_text import parse_problem  # noqa: E402
 from tests.conftest import run_planner  # noqa: E402
+from validator.checks import validate_output  # noqa: E402
+
+# golden_cases' vehicle names -> the validator's (the names the -grad/-left flags give).
+VALIDATOR_VEHICLE = {"point": "point", "grad": "spaceship", "left": "left"}
 
 GOLDEN = json.loads((Path(__file__).resolve().parent / "golden.json").read_text())
 
@@ -40,3 +46,7 @@ def test_output_matches_golden(case):
     assert done.returncode == expected["exit"], done.stderr.decode()
     assert len(done.stdout) == expected["bytes"]
     assert hashlib.sha256(done.stdout).hexdigest() == expected["sha256"]
+    problem_text = (PROBLEM_DIR / problem).read_text()
+    report = validate_output(parse_problem(problem_text), VALIDATOR_VEHICLE[vehicle],
+                             done.stdout.decode(), strict=True)
+    assert report.valid, report.first_failure
