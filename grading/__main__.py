@@ -1,0 +1,3 @@
+from grading.cli import entry_point
+
+entry_point()

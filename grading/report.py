@@ -1,0 +1,98 @@
+"""What a grading run leaves for people: ``gradebook.csv`` (one row per
+submission), ``report.md`` (the verdicts, links to failing runs' PDFs) and the
+summary table printed at the end."""
+
+from __future__ import annotations
+
+import csv
+import os
+from collections import defaultdict
+from pathlib import Path
+
+from grading.config import GradeConfig
+
+GRADEBOOK = "gradebook.csv"
+REPORT = "report.md"
+
+
+def gradebook_rows(config: GradeConfig, runs: list[dict]) -> list[dict]:
+    """One row per submission: ``submission, valid, runs, valid_<mode>..., score``."""
+    valid: dict[str, dict[str, int]] = defaultdict(lambda: defaultdict(int))
+    total: dict[str, dict[str, int]] = defaultdict(lambda: defaultdict(int))
+    for run in runs:
+        total[run["submission"]][run["mode"]] += 1
+        valid[run["submission"]][run["mode"]] += run["valid"]
+    rows = []
+    for name in sorted(total):
+        row = {"submission": name, "valid": sum(valid[name].values()),
+               "runs": sum(total[name].values())}
+        row.update({f"valid_{mode}": valid[name][mode] for mode in config.modes})
+        row["score"] = config.score.score(valid[name], total[name])
+        rows.append(row)
+    return rows
+
+
+def write_gradebook(config: GradeConfig, rows: list[dict]) -> Path:
+    path = config.out / GRADEBOOK
+    columns = ["submission", "valid", "runs", *(f"valid_{m}" for m in config.modes), "score"]
+    with open(path, "w", newline="") as out:
+        writer = csv.DictWriter(out, columns, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def _cell(run: dict, out: Path) -> str:
+    """A run's verdict in a table cell: a link to the PDF when it failed."""
+    if run["valid"]:
+        return "valid"
+    text = run["verdict"]
+    if run["verdict"] == "invalid":
+        text += f" ({run['failed_check']})"
+    elif run.get("timed_out"):
+        text = "timed out"
+    if run.get("pdf"):
+        text = f"[{text}]({os.path.relpath(run['pdf'], out)})"
+    return text
+
+
+def write_report(config: GradeConfig, runs: list[dict], builds: dict[str, dict]) -> Path:
+    """``report.md``: per submission, its build and a problem x mode table."""
+    by_submission: dict[str, dict[tuple[str, str], dict]] = defaultdict(dict)
+    for run in runs:
+        by_submission[run["submission"]][run["problem"], run["mode"]] = run
+    lines = ["# Grading report", "",
+             f"Modes: {', '.join(config.modes)}; timeout {config.timeout:g} s per run.", ""]
+    for name, table in sorted(by_submission.items()):
+        build = builds.get(name, {})
+        lines += [f"## {name}", "",
+                  "Build: " + ("ok" if build.get("ok") else f"failed: {build.get('reason')}")
+                  + (f" ([log]({os.path.relpath(build['log'], config.out)}))"
+                     if build.get("log") else ""),
+                  f"Sandbox: {build.get('sandbox') or 'unknown'}", "",
+                  "| problem | " + " | ".join(config.modes) + " |",
+                  "|---|" + "---|" * len(config.modes)]
+        for problem in sorted({problem for problem, _ in table}):
+            cells = [_cell(table[problem, mode], config.out) if (problem, mode) in table
+                     else "not run" for mode in config.modes]
+            lines.append(f"| {problem} | " + " | ".join(cells) + " |")
+        failures = [run for run in table.values() if not run["valid"] and run["message"]]
+        lines += [""] + [f"- {run['problem']} {run['mode']}: {run['message']}"
+                         + (f" ({run['detail']})" if run.get("detail") else "")
+                         for run in sorted(failures, key=lambda r: (r["problem"], r["mode"]))]
+        lines.append("")
+    path = config.out / REPORT
+    path.write_text("\n".join(lines))
+    return path
+
+
+def summary_table(rows: list[dict]) -> str:
+    """The gradebook as an aligned text table, for the terminal."""
+    if not rows:
+        return "no submissions\n"
+    columns = list(rows[0])
+    cells = [columns] + [[str(row[c]) for c in columns] for row in rows]
+    widths = [max(len(line[i]) for line in cells) for i in range(len(columns))]
+    return "".join("  ".join(cell.ljust(width) if i == 0 else cell.rjust(width)
+                             for i, (cell, width) in enumerate(zip(line, widths))).rstrip()
+                   + "\n" for line in cells)

@@ -1,0 +1,144 @@
+"""The two kinds of task, run in a worker (a local process or a Dask worker): build
+a submission, and run one submission on one problem in one mode and validate the
+answer with the validator's own functions. Each returns its row for the store."""
+
+from __future__ import annotations
+
+import functools
+import tempfile
+import threading
+from pathlib import Path
+
+from grading.config import MODE_FLAGS, MODE_VEHICLES, GradeConfig, Limits
+from grading.sandbox import Sandbox, probe
+from planning_core.problem_text import format_problem, parse_problem
+from planning_core.space_information import grid_space_information
+from validator.checks import ValidationReport, validate_plan
+from validator.cli import decode_output, solver_messages
+from validator.run_planner import PlannerRun, run_planner
+
+# run_planner's sweep assumes no other thread of the process starts processes
+# meanwhile: a Dask worker with several threads runs its tasks one at a time.
+_ONE_AT_A_TIME = threading.Lock()
+
+
+def sandbox_here(wanted: bool) -> Sandbox:
+    """This worker's sandbox, probed once per process (a cluster's machines may differ)."""
+    with _ONE_AT_A_TIME:
+        return _probe_once(wanted)
+
+
+_probe_once = functools.lru_cache(maxsize=2)(probe)
+
+
+def _contained(config: GradeConfig, sandbox: Sandbox, submission: str, program: list[str],
+               log: Path, stdin: bytes, limits: Limits, timeout: float) -> PlannerRun:
+    """``program`` run in the submission's folder through the validator's machinery."""
+    log.parent.mkdir(parents=True, exist_ok=True)
+    log.write_bytes(b"")  # not appended to what an interrupted try left
+    scratch = config.out / "tmp"
+    scratch.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=scratch) as tmp, _ONE_AT_A_TIME:
+        command = sandbox.command((config.submissions / submission).resolve(),
+                                  Path(tmp).resolve(), log.resolve(), program, limits,
+                                  timeout)
+        return run_planner(command, stdin, timeout=timeout, output_cap=limits.output_bytes)
+
+
+def _drop_if_empty(log: Path) -> str | None:
+    """The log's path, or None (and no file) when nothing was written."""
+    if log.exists() and log.stat().st_size == 0:
+        log.unlink()
+    return str(log) if log.exists() else None
+
+
+def build_one(config: GradeConfig, submission: str) -> dict:
+    """Run the submission's make.sh once in its folder; the ``builds`` row."""
+    sandbox = sandbox_here(config.sandbox)
+    log = config.out / "logs" / submission / "make.log"
+    row = {"submission": submission, "log": str(log), "sandbox": sandbox.note}
+    if not (config.submissions / submission / "make.sh").is_file():
+        return {**row, "ok": 0, "reason": "no make.sh", "log": None}
+    run = _contained(config, sandbox, submission, ["sh", "-c", "exec ./make.sh >&2"], log,
+                     b"", config.build_limits, config.build_timeout)
+    reason = _build_failure(run, log)
+    return {**row, "ok": int(not reason), "reason": reason, "exit_status": run.exit_code,
+            "wall_time": round(run.wall_time, 6), "log": _drop_if_empty(log)}
+
+
+def _build_failure(run: PlannerRun, log: Path) -> str:
+    """Why the build failed, with the log's last line; '' when it did not."""
+    if not run.started:
+        return f"make.sh could not be started: {run.start_error}"
+    if run.timed_out:
+        why = f"make.sh timed out after {run.timeout:g} s"
+    elif run.signal is not None:
+        why = f"make.sh killed by signal {run.signal}"
+    elif run.exit_code:
+        why = f"make.sh exited {run.exit_code}"
+    else:
+        return ""
+    lines = log.read_text(errors="replace").split("\n") if log.exists() else []
+    last = next((line.strip() for line in reversed(lines) if line.strip()), "")
+    return f"{why}: {last[:200]}" if last else why
+
+
+def failed_build_row(submission: str, problem: str, mode: str, build: dict) -> dict:
+    """The row of a run that was not attempted: its submission did not build."""
+    return {"submission": submission, "problem": problem, "mode": mode,
+            "verdict": "build failed", "valid": 0, "failed_check": "build",
+            "message": build.get("reason") or "the build failed", "sandbox": build.get("sandbox"),
+            "log": build.get("log")}
+
+
+def run_one(config: GradeConfig, submission: str, problem_name: str, mode: str) -> dict:
+    """Run ``./run.sh`` with the mode's flags on the problem, validate; the ``runs`` row."""
+    sandbox = sandbox_here(config.sandbox)
+    problem = parse_problem((config.problems / problem_name).read_text(errors="replace"))
+    si = grid_space_information(problem, MODE_VEHICLES[mode])
+    stem = f"{Path(problem_name).stem}-{mode}"
+    log = config.out / "logs" / submission / f"{stem}.stderr"
+    run = _contained(config, sandbox, submission, ["./run.sh", *MODE_FLAGS[mode]], log,
+                     format_problem(problem).encode("ascii"), config.limits, config.timeout)
+    report = None
+    if run.ran_to_completion:
+        report = validate_plan(si, decode_output(run.output), output_cap_exceeded=(
+            run.output_cap if run.output_cap_exceeded else None))
+    row = {"submission": submission, "problem": problem_name, "mode": mode,
+           "exit_status": run.exit_code, "signal": run.signal, "timed_out": int(run.timed_out),
+           "wall_time": round(run.wall_time, 6), "output_bytes": len(run.output),
+           "sandbox": sandbox.note, "log": _drop_if_empty(log), **_verdict(run, report)}
+    if not row["valid"]:
+        pdf = config.out / "pdf" / submission / f"{stem}.pdf"
+        row["pdf"] = _draw(pdf, problem, mode, report, solver_messages(run), problem_name)
+    return row
+
+
+def _verdict(run: PlannerRun, report: ValidationReport | None) -> dict:
+    """The verdict columns of a run's row."""
+    if report is None:
+        return {"verdict": "planner failed", "valid": 0, "failed_check": "planner",
+                "message": " ".join(solver_messages(run))}
+    failure = report.first_failure
+    plan = report.plan
+    return {"verdict": "valid" if report.valid else "invalid", "valid": int(report.valid),
+            "failed_check": failure.name if failure else None,
+            "message": failure.message if failure else None,
+            "detail": failure.detail if failure else None,
+            "path_length": report.path_length,
+            "trajectory_size": report.trajectory_count if plan is not None else None,
+            "tree_size": report.tree_count if plan is not None else None}
+
+
+def _draw(pdf: Path, problem, mode: str, report: ValidationReport | None,
+          notes: list[str], label: str) -> str | None:
+    """The failing run's PDF (the validator's drawing); None if it could not be drawn."""
+    from validator.checks import INVALID_VERDICT
+    from validator.render_pdf import render_pdf  # reportlab: only for failing runs
+    pdf.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        render_pdf(str(pdf), problem, MODE_VEHICLES[mode], report, INVALID_VERDICT, notes,
+                   label)
+    except Exception:  # a drawing problem must not cost the run its row
+        return None
+    return str(pdf)
