@@ -1,4 +1,5 @@
-"""The validator's checks: SPEC section 3, checks 1 to 7, in that order.
+"""The validator's checks: SPEC section 3, checks 1 to 7, in that order (for a
+``kinoplan 1`` problem, SPEC 5.5's: 7 checks kinodynamic, 6 geometric).
 
 :func:`validate_output` reads a planner's output text, re-simulates it and
 returns a :class:`ValidationReport`. It prints nothing and imports only
@@ -70,6 +71,8 @@ class Limits:
     """A longer point path fails check 6 with TOO_LONG (sampling costs ~0.3 us per 0.05)."""
     max_tree_rows_kept: int = 250_000
     """Tree rows past this many are parsed and counted but not kept (nor drawn)."""
+    max_motion_samples: int = 1_000_000
+    """Geometric family: more samples fail check 6 with TOO_LONG (6-16 us each)."""
     max_warnings_listed: int = 20
     """Corner-cut warnings listed one by one; the rest are summed up in one line."""
 
@@ -564,15 +567,109 @@ class _KinoplanValidation(_Validation):
     def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
         results: list[CheckResult] = []
         try:
-            if not self.system.kinodynamic:
-                raise self.fail(1, PARSE_ERROR, f"the {self.system.name} system is geometric: "
-                                "its answers cannot be checked yet", None)
             results.append(self.check_parse(text, output_cap))
             results.append(self.check_nonempty())
             results.append(self.check_bounds())
             results.append(self.check_start())
             results.append(self.check_goal())
             results.extend(self.check_kinodynamic_motion())
+        except _Failed as failure:
+            results.append(failure.result)
+        return results
+
+
+class _GeometricValidation(_KinoplanValidation):
+    """SPEC 5.5's checks for a geometric ``kinoplan 1`` answer (arm2, rigid2): a
+    path of configurations, each straight segment checked at the system's
+    ``motion_samples`` (``-strict``: ten times denser). Six checks, no dynamics."""
+
+    def other_answer_hint(self, error: PlanParseError) -> str:
+        names = " ".join(self.system.state_names)
+        return (f" ({self.system.name}: {self.n} numbers a trajectory line, {names}; "
+                f"{2 * self.n} a tree line)")
+
+    # 1: only the widths (no K)
+    check_parse = _Validation.check_parse
+
+    # 3
+    def check_bounds(self) -> CheckResult:
+        for index, row in enumerate(self.plan.trajectory_rows()):
+            why = self.system.bounds_violation(row)
+            if why is not None:
+                line = self.line_of(index)
+                raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
+        return self.passed(3)
+
+    # 5: the last configuration itself
+    def check_goal(self) -> CheckResult:
+        goal, last = self.si.goal, self.plan.trajectory_count - 1
+        end, line = self.plan.trajectory_row(last), self.line_of(last)
+        distance = goal.distance(end)
+        if not goal.accepts(end):
+            raise self.fail(5, NOT_AT_GOAL, f"line {line}: the last configuration "
+                            f"{_angle(*end)} is {_num(distance)} from the goal "
+                            f"({', '.join(goal.names)} within {goal.tolerance:g})", line,
+                            self.where(end))
+        self.final_state = end
+        return self.passed(5, f"ends {_num(distance)} from the goal")
+
+    def _segments(self):
+        """``(index of the segment's first line, from, to)`` for each segment."""
+        rows = self.plan.trajectory_rows()
+        previous = next(rows)
+        for index, row in enumerate(rows):
+            yield index, previous, row
+            previous = row
+
+    def _sample_count(self) -> int:
+        """Samples check 6 will test (each segment's ``n``, plus the first state);
+        fails with TOO_LONG past the limit before any is tested."""
+        system, distance = self.system, self.system.distance
+        scale = (10.0 if self.strict else 1.0) / system.check
+        count, length = 1, 0.0
+        for _, a, b in self._segments():
+            d = distance(a, b)
+            length += d
+            count += max(1, math.ceil(d * scale))
+        self.path_length = length
+        if count > self.limits.max_motion_samples:
+            raise self.fail(6, TOO_LONG, f"the path's segments make {count} samples at the "
+                            f"check step {system.check:g}{' (-strict)' if self.strict else ''};"
+                            f" the validator tests at most {self.limits.max_motion_samples}",
+                            self.plan.trajectory_first_line)
+        return count
+
+    # 6: every sample of every segment
+    def check_geometric_motion(self) -> CheckResult:
+        is_valid, samples = self.si.is_valid, self.system.motion_samples
+        count = self._sample_count()
+        first = self.plan.trajectory_row(0)
+        if not is_valid(first):
+            line = self.line_of(0)
+            raise self.fail(6, POINT_COLLISION, f"line {line}: configuration "
+                            f"{self.invalid_place(first)}", line, self.where(first))
+        for index, a, b in self._segments():
+            states = samples(a, b, strict=self.strict)
+            for k in range(1, len(states)):
+                if not is_valid(states[k]):
+                    line = self.line_of(index)
+                    raise self.fail(6, POINT_COLLISION, f"segment from line {line} "
+                                    f"{_angle(*a)} to line {line + 1} {_angle(*b)}: sample "
+                                    f"{k} of {len(states) - 1} {self.invalid_place(states[k])}",
+                                    line, self.where(states[k]))
+        density = " (-strict: ten times denser)" if self.strict else ""
+        return self.passed(6, f"{self.plan.trajectory_count - 1} segments, {count} samples at "
+                              f"most {self.system.check:g} apart{density}")
+
+    def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
+        results: list[CheckResult] = []
+        try:
+            results.append(self.check_parse(text, output_cap))
+            results.append(self.check_nonempty())
+            results.append(self.check_bounds())
+            results.append(self.check_start())
+            results.append(self.check_goal())
+            results.append(self.check_geometric_motion())
         except _Failed as failure:
             results.append(failure.result)
         return results
@@ -597,7 +694,10 @@ def validate_plan(si: SpaceInformation, output_text: str, strict: bool = False,
     bytes, when the planner's output was cut off at it (check 1 then fails).
     Never raises on any text.
     """
-    validation = _KinoplanValidation if isinstance(si, KinoplanSpaceInformation) else _Validation
+    if not isinstance(si, KinoplanSpaceInformation):
+        validation = _Validation
+    else:
+        validation = _KinoplanValidation if si.system.kinodynamic else _GeometricValidation
     run = validation(si, strict, limits)
     checks = run.run(output_text, output_cap_exceeded)
     return ValidationReport(si.system, strict, checks, run.warnings, run.corner_cuts, run.plan,

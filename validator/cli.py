@@ -4,8 +4,8 @@
                   [-json] -- PLANNER [ARGS...] < problem.sw (or problem.kp)
 
 A ``kinoplan 1`` problem (SPEC 5, first word ``kinoplan``) names its own system:
-the vehicle flags are then a usage error, the checks are SPEC 5.5's, and no PDF
-is drawn yet (one note on stderr).
+the vehicle flags are then a usage error, the checks are SPEC 5.5's, and the PDF
+has the family's pages (render_family).
 
 argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
 stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
@@ -53,7 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Read a problem on stdin (a .sw grid map, or a kinoplan 1 problem), run "
                     "PLANNER ARGS (everything after --) with the problem on its stdin, check "
                     "the trajectory it prints (SPEC 3, checks 1-7; kinoplan: SPEC 5.5), print "
-                    "the verdict and draw the tree in a PDF (.sw problems).",
+                    "the verdict and draw the tree in a PDF.",
         epilog="Exit status: 0 valid, 1 invalid, 2 usage error, bad problem or unwritable "
                "PDF, 3 the planner could not be started or timed out, 4 no verdict "
                "could be given.")
@@ -273,10 +273,6 @@ def _read_problem(parser, args, vehicle: Vehicle):
         return None
     if is_kinoplan(problem):
         reject_vehicle_flags(parser, args)
-        if not problem.system.kinodynamic:
-            say(f"{PROG}: error: answers for the geometric {problem.system_name} system "
-                "cannot be checked yet (kinodynamic kinoplan systems only)")
-            return None
         # The reader accepts ASCII only: the text goes to the planner as it came.
         return problem, text.encode("ascii"), kinoplan_space_information(problem)
     return (problem, format_problem(problem).encode("ascii"),
@@ -299,9 +295,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     report, status, verdict = _validate(run, si, args.strict)
 
     pdf = None
-    if kinoplan and not args.noviz:
-        say(f"{PROG}: no PDF for kinoplan problems yet (as with -noviz)")
-    elif not args.noviz:
+    if not args.noviz:
         try:
             if _write_pdf(args.o, problem, vehicle, report, verdict, messages, label):
                 pdf = args.o

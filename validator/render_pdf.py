@@ -7,7 +7,9 @@ failure; around the map, tick marks labelled in map units (bottom and left
 edges); above it the verdict, the problem and the counts; below it the failure's
 message and a legend of what the page shows, with a swatch each.
 
-The only module that imports reportlab. Big maps and trees stay fast and small
+A ``kinoplan 1`` problem gets the family's pages instead (render_family). The
+rendering modules (this one, render_family, render_geometric, render_plot) are
+the only ones that import reportlab. Big maps and trees stay fast and small
 because the blocked cells (merged into row runs) and the tree are written as a
 few long PDF paths, not one object per cell or edge, with coordinates in page
 points to two decimals, and a curve's vertices closer than half a point to the
@@ -35,6 +37,7 @@ from reportlab import rl_config
 from reportlab.lib.pagesizes import landscape, letter, portrait
 from reportlab.pdfgen.canvas import Canvas
 
+from planning_core.kinoplan import KinoplanProblem
 from planning_core.problem import Problem
 from planning_core.systems import spaceship
 from planning_core.vehicles import Vehicle
@@ -49,6 +52,8 @@ GOAL_RGB = (0.10, 0.20, 0.95)
 CORNER_RGB = (1.0, 0.55, 0.0)
 FAILURE_RGB = (0.85, 0.0, 0.85)
 VALID_RGB = (0.0, 0.50, 0.0)
+FOOTPRINT_RGB = (0.95, 0.55, 0.60)  # the family's bodies along a solution
+OBSTACLE_GRAY = 0.55               # the family's obstacles
 
 _MARGIN = 24.0
 _TITLE_BAND = 56.0      # verdict, heading, counts
@@ -305,6 +310,9 @@ def render_pdf(out: BinaryIO | str | os.PathLike, problem: Problem, vehicle: Veh
     # than all the drawing, and makes the file a quarter bigger.
     saved_a85, rl_config.useA85 = rl_config.useA85, 0
     try:
+        if isinstance(problem, KinoplanProblem):  # the family's pages (``vehicle`` unused)
+            from validator.render_family import render_family
+            return render_family(out, problem, report, verdict, notes, problem_label, options)
         return _render(out, problem, vehicle, report, verdict, notes, problem_label, options)
     finally:
         rl_config.useA85 = saved_a85
@@ -528,8 +536,9 @@ def _draw_swatch(canvas: Canvas, kind: str, x: float, y: float) -> None:
     """A 14 x 8 point sample of ``kind`` with its lower left corner at (x, y)."""
     canvas.saveState()
     cx, cy = x + 7.0, y + 4.0
-    if kind in ("solution", "tree"):
-        rgb, width = (SOLUTION_RGB, 1.8) if kind == "solution" else (TREE_RGB, 1.0)
+    if kind in ("solution", "tree", "pose"):
+        rgb, width = {"solution": (SOLUTION_RGB, 1.8), "tree": (TREE_RGB, 1.0),
+                      "pose": (FOOTPRINT_RGB, 1.6)}[kind]
         canvas.setStrokeColorRGB(*rgb)
         canvas.setLineWidth(width)
         canvas.setLineCap(1)
@@ -543,9 +552,13 @@ def _draw_swatch(canvas: Canvas, kind: str, x: float, y: float) -> None:
         canvas.circle(cx, cy, 3.5, stroke=1, fill=0)
     elif kind == "failure":
         _failure_cross(canvas, cx, cy, 3.0)
-    elif kind == "blocked":
-        canvas.setFillGray(BLOCKED_GRAY)
+    elif kind in ("blocked", "obstacle"):
+        canvas.setFillGray(BLOCKED_GRAY if kind == "blocked" else OBSTACLE_GRAY)
         canvas.rect(x + 3, y, 8, 8, stroke=0, fill=1)
+    elif kind == "footprint":
+        canvas.setStrokeColorRGB(*FOOTPRINT_RGB)
+        canvas.setLineWidth(1.0)
+        canvas.rect(x + 3, y + 1, 8, 6, stroke=1, fill=0)
     canvas.restoreState()
 
 
