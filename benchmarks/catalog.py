@@ -24,15 +24,32 @@ OMPL_PREFIX = "ompl-"
 class PlannerChoice:
     """One planner as the harness runs it."""
 
-    id: str                   # "rrt" (ours), "ompl-rrt", ...
+    id: str                   # "rrt" (ours), "ompl-rrt", "blossom-b1", ...
     implementation: str       # "ours" | "ompl"
     cli_name: str             # the value of -planner
     vehicles: frozenset
+    systems: frozenset = frozenset()
+    """The kinoplan family systems (SPEC 5) it plans for, by name."""
+    params: tuple[str, ...] = ()
+    """``NAME=VALUE`` overrides of our planner's ``Params`` (run through
+    ``benchmarks.planner_params``), e.g. ``("b=1",)`` for blossom."""
 
-    def command(self, vehicle: Vehicle, seed: int, time_limit: float) -> list[str]:
-        module = "rrt_cli" if self.implementation == "ours" else "benchmarks.ompl_planner"
-        return [sys.executable, "-m", module, *VEHICLE_FLAGS[vehicle], "-planner",
-                self.cli_name, "-seed", str(seed), "-time", repr(float(time_limit)), "-stats"]
+    def command(self, vehicle: Vehicle | None, seed: int, time_limit: float) -> list[str]:
+        """The planner's command line; ``vehicle`` None for a kinoplan problem."""
+        if self.implementation == "ompl":
+            head = ["benchmarks.ompl_planner"]
+        else:
+            head = ["benchmarks.planner_params", *self.params] if self.params else ["rrt_cli"]
+        flags = VEHICLE_FLAGS[vehicle] if vehicle is not None else ()
+        return [sys.executable, "-m", *head, *flags, "-planner", self.cli_name, "-seed",
+                str(seed), "-time", repr(float(time_limit)), "-stats"]
+
+
+GEOMETRIC_SYSTEMS = ("arm2", "rigid2")
+KINODYNAMIC_SYSTEMS = ("pendulum", "car2", "unicycle", "car1")
+FAMILY_SYSTEMS = KINODYNAMIC_SYSTEMS + GEOMETRIC_SYSTEMS
+BLOSSOM_VARIANTS = (1, 3)
+"""Blossom's b besides its default (5), as planners ``blossom-b1`` and ``blossom-b3``."""
 
 
 def label(planner_id: str, vehicle: str) -> str:
@@ -40,9 +57,10 @@ def label(planner_id: str, vehicle: str) -> str:
     if not planner_id.startswith(OMPL_PREFIX):
         return f"{planner_id} (ours)"
     name = planner_id[len(OMPL_PREFIX):]
-    kind = "geometric" if vehicle == Vehicle.POINT.value else "control"
+    kind = ("geometric" if vehicle in (Vehicle.POINT.value, *GEOMETRIC_SYSTEMS)
+            else "control")
     return {"rrt": f"OMPL {kind} RRT", "rrtconnect": "OMPL RRTConnect",
-            "kpiece1": "OMPL control KPIECE1"}.get(name, planner_id)
+            "kpiece1": "OMPL control KPIECE1", "prm": "OMPL PRM"}.get(name, planner_id)
 
 
 def ompl_installed() -> bool:
@@ -81,3 +99,27 @@ def reference_planner(vehicle: Vehicle) -> str:
     """The OMPL planner our times are compared with: RRT (geometric or control)."""
     del vehicle  # ompl-rrt is geometric RRT for the point, control RRT for ships
     return OMPL_PREFIX + "rrt"
+
+
+def family_planners(include_ompl: bool = True) -> list[PlannerChoice]:
+    """Every planner that plans for some kinoplan family system: ours as the registry
+    says (``plans_for_kinoplan``), blossom also at each of ``BLOSSOM_VARIANTS``, and
+    OMPL's (``benchmarks.ompl_family``)."""
+    from planning_core.systems import load
+    from rrt_cli.planners import PLANNERS
+    systems = {name: load(name) for name in FAMILY_SYSTEMS}
+    planners = []
+    for name, entry in sorted(PLANNERS.items()):
+        mine = frozenset(s for s, system in systems.items() if entry.plans_for_kinoplan(system))
+        if mine:
+            planners.append(PlannerChoice(name, "ours", name, frozenset(), mine))
+            if name == "blossom":
+                planners += [PlannerChoice(f"blossom-b{b}", "ours", name, frozenset(), mine,
+                                           (f"b={b}",)) for b in BLOSSOM_VARIANTS]
+    if include_ompl and ompl_installed():
+        from benchmarks.ompl_family import GEOMETRIC_PLANNERS, KINODYNAMIC_PLANNERS
+        for name in sorted(set(GEOMETRIC_PLANNERS) | set(KINODYNAMIC_PLANNERS)):
+            mine = frozenset((KINODYNAMIC_SYSTEMS if name in KINODYNAMIC_PLANNERS else ())
+                             + (GEOMETRIC_SYSTEMS if name in GEOMETRIC_PLANNERS else ()))
+            planners.append(PlannerChoice(OMPL_PREFIX + name, "ompl", name, frozenset(), mine))
+    return planners

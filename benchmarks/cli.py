@@ -1,6 +1,7 @@
 """The one command: regenerate the suite, run the harness, write the reports.
 
-    python -m benchmarks [--preset smoke|quick|full] [--vehicles point spaceship left]
+    python -m benchmarks [--preset smoke|quick|course|sweep|full|family|family-geometric|
+                                   family-quick|family-sweep] [--vehicles point spaceship left]
                          [--planners rrt ompl-rrt ...] [--problems PATTERN ...]
                          [--max-size N] [--seeds N] [--time S] [--workers 2]
                          [--out DIR] [--no-ompl] [--no-plots] [--report-only]
@@ -9,7 +10,9 @@ Writes into ``--out`` (default ``benchmarks/results/<preset>``): ``runs.csv``
 (one row per run), ``report.md`` (tables), ``plots.pdf`` and ``ompl-logs/``
 (OMPL's benchmark log format, for ompl_benchmark_statistics.py and Planner
 Arena), and ``meta.json``. Progress goes to stderr; the path of the report is
-the only line on stdout.
+the only line on stdout. The ``family*`` presets (``benchmarks/family.py``) run the
+kinoplan problems of ``benchmarks/problems/family/`` and write their own report
+(``benchmarks/family_report.py``; no plots).
 
 Ctrl-C or SIGTERM stops within a second: ``runs.csv`` (written row by row as
 runs finish) keeps the finished runs, and the report is made from them (without
@@ -34,7 +37,8 @@ import sys
 import time
 from pathlib import Path
 
-from benchmarks import catalog, generator, presets
+from benchmarks import catalog, family, generator, presets
+from benchmarks.family_report import markdown_report as family_markdown_report
 from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_on_sigterm,
                                 run_all)
 from benchmarks.ompl_log import LogHeader, write_logs
@@ -53,8 +57,10 @@ def build_parser() -> argparse.ArgumentParser:
                      description="Regenerate the problem suite, run planners x vehicles x "
                                  "problems x seeds, and write CSV, Markdown, PDF and OMPL "
                                  "logs.")
-    parser.add_argument("--preset", choices=sorted(presets.PRESETS), default="quick",
-                        help="which problems, vehicles, seeds and limits (default: quick)")
+    parser.add_argument("--preset", choices=sorted(presets.PRESETS) + sorted(
+                        family.FAMILY_PRESETS), default="quick",
+                        help="which problems, vehicles, seeds and limits (default: quick); "
+                             "family*: the kinoplan family (SPEC 5)")
     parser.add_argument("--vehicles", nargs="+", choices=[v.value for v in Vehicle],
                         help="only these vehicles of the preset")
     parser.add_argument("--planners", nargs="+", metavar="ID",
@@ -63,7 +69,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--problems", nargs="+", metavar="PATTERN",
                         help="only problems whose name matches (shell patterns)")
     parser.add_argument("--max-size", type=int, help="override the preset's largest map side")
-    parser.add_argument("--seeds", type=int, help="override the preset's number of seeds")
+    parser.add_argument("--seeds", type=int, help="override the preset's number of seeds "
+                        "(runs per planner and problem)")
     parser.add_argument("--time", type=float, help="override the per-run time limit (s)")
     parser.add_argument("--workers", type=int, default=2,
                         help="runs at a time, each in its own worker process (default: 2)")
@@ -136,24 +143,37 @@ def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
     return specs
 
 
+def build_family_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
+    """A family preset's runs: every (planner, problem) of its tables x seeds."""
+    preset = family.FAMILY_PRESETS[args.preset]
+    seeds = args.seeds if args.seeds is not None else preset.runs
+    limit = args.time if args.time is not None else preset.time_limit
+    return [RunSpec(run.planner, None, run.problem, seed, limit)
+            for run in family.family_runs(preset, planners, tuple(args.problems or ()))
+            for seed in range(1, seeds + 1)]
+
+
 def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:
     """runs.csv, report.md, meta.json, the OMPL logs and (``plots``) plots.pdf from
-    ``rows``; with ``yardstick`` the point vehicle's shortest paths (shortest.csv)."""
+    ``rows``; with ``yardstick`` the point vehicle's shortest paths (shortest.csv).
+    A family preset's report is the family's (no yardstick, no plots)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
+    family_preset = family.FAMILY_PRESETS.get(meta.get("preset", ""))
     shortest = None
-    if yardstick:  # the point vehicle's path lengths against these: seconds at 100x100
+    if yardstick and family_preset is None:  # seconds at 100x100
         shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
             f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"
-    report.write_text(markdown_report(rows, meta, shortest=shortest) + "\n")
+    report.write_text((markdown_report(rows, meta, shortest=shortest) if family_preset is None
+                       else family_markdown_report(rows, meta, family_preset)) + "\n")
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     header = LogHeader(hostname=meta.get("host", "unknown"), date=meta.get("date", ""),
                        cpu_info=meta.get("cpu", ""),
                        total_seconds=float(meta.get("wall seconds", 0.0) or 0.0))
     write_logs(rows, out / "ompl-logs", header)
-    if plots:
+    if plots and family_preset is None:
         try:
             from benchmarks.plots import write_pdf
             write_pdf(rows, out / "plots.pdf", title=f"{meta.get('preset', '')} run: ")
@@ -169,6 +189,11 @@ def _check_args(parser: argparse.ArgumentParser, args: argparse.Namespace) -> No
         parser.error("--seeds must be at least 1")
     if args.time is not None and not args.time > 0:
         parser.error("--time must be positive")
+    if args.vehicles and args.preset in family.FAMILY_PRESETS:
+        parser.error("--vehicles is for the grid presets (a family problem names its "
+                     "system: narrow with --problems)")
+    if args.max_size is not None and args.preset in family.FAMILY_PRESETS:
+        parser.error("--max-size is for the grid presets")
 
 
 def _report_only(parser: argparse.ArgumentParser, args: argparse.Namespace, out: Path) -> int:
@@ -192,13 +217,17 @@ def _regenerate_suite() -> None:
 
 def _choose_planners(parser: argparse.ArgumentParser, args: argparse.Namespace
                      ) -> tuple[list[catalog.PlannerChoice], str]:
-    """The planners to run, and a note when OMPL's were asked for but are missing."""
+    """The planners to run (the family's for a family preset), and a note when OMPL's
+    were asked for but are missing."""
     ompl_note = ""
     if not args.no_ompl and not catalog.ompl_installed():
         ompl_note = ("the ompl package is not installed (pip install ompl, or the project's "
                      "[ompl] extra): OMPL's planners were skipped")
         sys.stderr.write(f"benchmarks: note: {ompl_note}\n")
-    planners = catalog.all_planners(not args.no_ompl)
+    if args.preset in family.FAMILY_PRESETS:
+        planners = catalog.family_planners(not args.no_ompl)
+    else:
+        planners = catalog.all_planners(not args.no_ompl)
     if args.planners:
         known = {p.id for p in planners}
         unknown = [name for name in args.planners if name not in known]
@@ -257,10 +286,11 @@ def main(argv: list[str] | None = None) -> int:
     out = args.out or RESULTS_DIR / args.preset
     if args.report_only:
         return _report_only(parser, args, out)
-    if not args.no_generate:
+    is_family = args.preset in family.FAMILY_PRESETS
+    if not args.no_generate and not is_family:
         _regenerate_suite()
     planners, ompl_note = _choose_planners(parser, args)
-    specs = build_specs(args, planners)
+    specs = (build_family_specs if is_family else build_specs)(args, planners)
     if not specs:
         parser.error("no runs selected (check --vehicles, --planners and --problems)")
 

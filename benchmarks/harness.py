@@ -27,16 +27,13 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Callable, Iterable
+from typing import IO, Callable, Iterable
 
 from benchmarks.catalog import ROOT, PlannerChoice
 from benchmarks.generator import family_of, problem_id
 from benchmarks.rows import RunRow, RunStatus
-from planning_core.problem_text import parse_problem
+from planning_core.cli_args import is_kinoplan, parse_any_problem
 from planning_core.vehicles import Vehicle
-
-if TYPE_CHECKING:
-    from planning_core.problem import Problem
 
 LAUNCHER = Path(__file__).resolve().parent / "launch.py"
 _STATS_LINE = re.compile(r"^\S+ stats: (.*)$", re.MULTILINE)
@@ -49,14 +46,16 @@ worker: one at a time)."""
 @dataclass(frozen=True)
 class RunSpec:
     planner: PlannerChoice
-    vehicle: Vehicle
+    vehicle: Vehicle | None
+    """The grid vehicle; None for a ``kinoplan`` problem (it names its system)."""
     problem: Path
     seed: int
     time_limit: float
 
     @property
     def key(self) -> tuple:
-        return (problem_id(self.problem), self.vehicle.value, self.planner.id, self.seed)
+        vehicle = self.vehicle.value if self.vehicle is not None else ""
+        return (problem_id(self.problem), vehicle, self.planner.id, self.seed)
 
 
 @dataclass(frozen=True)
@@ -129,11 +128,12 @@ class _Outcome:
     trajectory_lines: int | None = None
     corner_cuts: int = 0
     validation_seconds: float = 0.0
+    path_duration: float | None = None
 
 
 def run_one(spec: RunSpec, options: HarnessOptions = HarnessOptions()) -> RunRow:
     """Run one planner process to the end and validate what it printed."""
-    problem = parse_problem(spec.problem.read_text())
+    problem = parse_any_problem(spec.problem.read_text())
     hard_limit = spec.time_limit * 1.1 + options.grace
     finished = _run_planner(spec, hard_limit)
     stats = parse_stats(finished.stderr)
@@ -196,12 +196,16 @@ def _read_text(handle: IO[bytes]) -> str:
     return handle.read().decode("utf-8", errors="replace")
 
 
-def _validate(problem: Problem, vehicle: Vehicle, stdout_text: str, strict: bool) -> _Outcome:
+def _validate(problem, vehicle: Vehicle | None, stdout_text: str, strict: bool) -> _Outcome:
     """A run that exited 0: solved if the validator accepts its output, else invalid."""
-    from validator.checks import validate_output
+    from validator.checks import validate_output, validate_plan
 
     checked = time.perf_counter()
-    report = validate_output(problem, vehicle, stdout_text, strict=strict)
+    if is_kinoplan(problem):
+        from planning_core.space_information import kinoplan_space_information
+        report = validate_plan(kinoplan_space_information(problem), stdout_text, strict)
+    else:
+        report = validate_output(problem, vehicle, stdout_text, strict=strict)
     validation_seconds = time.perf_counter() - checked
     if report.valid:
         status, failure, path_length = RunStatus.SOLVED, "", report.path_length
@@ -210,7 +214,16 @@ def _validate(problem: Problem, vehicle: Vehicle, stdout_text: str, strict: bool
         status, path_length = RunStatus.INVALID, None
         failure = f"{first.message} {first.detail}".strip() if first else "invalid"
     return _Outcome(status, failure, report.valid, path_length, report.trajectory_count,
-                    len(report.corner_cuts), validation_seconds)
+                    len(report.corner_cuts), validation_seconds,
+                    control_duration(problem, report) if report.valid else None)
+
+
+def control_duration(problem, report) -> float | None:
+    """A valid kinodynamic family answer's total control duration in seconds (the sum of
+    its K times DT: OMPL's ``PathControl::length()``); None for other answers."""
+    if not is_kinoplan(problem) or not problem.system.kinodynamic:
+        return None
+    return sum(row[-1] for row in report.plan.trajectory_rows()) * problem.system.dt
 
 
 def _unsolved(finished: _Finished, stats: dict[str, str]) -> _Outcome:
@@ -227,11 +240,14 @@ def _unsolved(finished: _Finished, stats: dict[str, str]) -> _Outcome:
                     _last_line(finished.stderr) or f"exit status {finished.exit_status}")
 
 
-def _row(spec: RunSpec, problem: Problem, finished: _Finished, stats: dict[str, str],
+def _row(spec: RunSpec, problem, finished: _Finished, stats: dict[str, str],
          outcome: _Outcome) -> RunRow:
+    family = is_kinoplan(problem)  # a kinoplan problem: its system is the row's vehicle
     return RunRow(
-        problem=problem_id(spec.problem), family=family_of(problem_id(spec.problem)),
-        width=problem.width, height=problem.height, vehicle=spec.vehicle.value,
+        problem=problem_id(spec.problem),
+        family=problem.system_name if family else family_of(problem_id(spec.problem)),
+        width=0 if family else problem.width, height=0 if family else problem.height,
+        vehicle=problem.system_name if family else spec.vehicle.value,
         planner=spec.planner.id, implementation=spec.planner.implementation,
         seed=spec.seed, time_limit=float(spec.time_limit),
         solved=outcome.status is RunStatus.SOLVED, status=outcome.status.value,
@@ -241,7 +257,8 @@ def _row(spec: RunSpec, problem: Problem, finished: _Finished, stats: dict[str, 
         tree_nodes=_number(stats, "tree_nodes", int),
         iterations=_number(stats, "iterations", int),
         trajectory_lines=outcome.trajectory_lines, peak_memory_mb=finished.peak_memory_mb,
-        corner_cuts=outcome.corner_cuts, validation_seconds=outcome.validation_seconds)
+        corner_cuts=outcome.corner_cuts, validation_seconds=outcome.validation_seconds,
+        path_duration=outcome.path_duration)
 
 
 def order_for_balance(specs: Iterable[RunSpec]) -> list[RunSpec]:
@@ -249,7 +266,7 @@ def order_for_balance(specs: Iterable[RunSpec]) -> list[RunSpec]:
     that ours and OMPL's share the same machine load."""
     def cost(spec: RunSpec):
         size = spec.problem.stat().st_size
-        return (-size, problem_id(spec.problem), spec.vehicle.value, spec.seed, spec.planner.id)
+        return (-size, *spec.key[:2], spec.seed, spec.planner.id)
     return sorted(specs, key=cost)
 
 

@@ -95,7 +95,7 @@ def solve(problem: Problem, vehicle: Vehicle, planner: str, time_limit: float, s
     return _solve_point(ob, og, problem, planner, time_limit, params)
 
 
-class _Termination:
+class Termination:
     """A termination condition that counts planner iterations and keeps the clock."""
 
     def __init__(self, time_limit: float):
@@ -107,7 +107,7 @@ class _Termination:
         return time.perf_counter() >= self.deadline
 
 
-def _bounds(ob, lows, highs):
+def make_bounds(ob, lows, highs):
     bounds = ob.RealVectorBounds(len(lows))
     for index, (low, high) in enumerate(zip(lows, highs)):
         bounds.setLow(index, low)
@@ -120,7 +120,7 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
     began = time.perf_counter()
     world = GridWorld(problem)
     space = ob.RealVectorStateSpace(2)
-    space.setBounds(_bounds(ob, (0.0, 0.0), (float(problem.width), float(problem.height))))
+    space.setBounds(make_bounds(ob, (0.0, 0.0), (float(problem.width), float(problem.height))))
     info = ob.SpaceInformation(space)
     point_free = world.point_free
 
@@ -136,14 +136,14 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
     start, goal = space.allocState(), space.allocState()
     start[0], start[1] = problem.start
     goal[0], goal[1] = problem.goal
-    setup.setStartAndGoalStates(start, goal, _inside(params.goal_radius))
+    setup.setStartAndGoalStates(start, goal, inside(params.goal_radius))
     if planner == "rrt":
         chosen = og.RRT(info)
         chosen.setGoalBias(params.goal_bias)
     else:
         chosen = og.RRTConnect(info)
     setup.setPlanner(chosen)
-    termination = _Termination(time_limit)
+    termination = Termination(time_limit)
     status = setup.solve(ob.PlannerTerminationCondition(termination))
     solved = setup.haveExactSolutionPath()
     trajectory = ()
@@ -161,7 +161,7 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
                       data.numVertices(), time.perf_counter() - began)
 
 
-def _inside(radius: float) -> float:
+def inside(radius: float) -> float:
     # A hair inside the radius, so that a checker recomputing the distance with
     # other rounding still finds the end within it.
     return radius * (1.0 - 1e-9)
@@ -174,12 +174,12 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
     blocked = list(problem.blocked)
     v = params.velocity_bound
     space = ob.RealVectorStateSpace(4)
-    space.setBounds(_bounds(ob, (0.0, 0.0, -v, -v), (float(width), float(height), v, v)))
+    space.setBounds(make_bounds(ob, (0.0, 0.0, -v, -v), (float(width), float(height), v, v)))
     theta_range = vehicle.system.theta_range  # 2 pi, or pi for the left-only ship
     controls = oc.RealVectorControlSpace(space, 2)
     # OMPL samples [low, high]; theta_range itself (2 pi or pi) is drawn with
     # probability zero and is a legal angle anyway.
-    controls.setBounds(_bounds(ob, (0.0, 0.0), (theta_range, spaceship.MAX_THRUST)))
+    controls.setBounds(make_bounds(ob, (0.0, 0.0), (theta_range, spaceship.MAX_THRUST)))
     info = oc.SpaceInformation(space, controls)
     propagate_while = spaceship.SYSTEM.propagate_while
     grid = GridWorld(problem)
@@ -214,14 +214,14 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
     start = space.allocState()
     start[0], start[1], start[2], start[3] = problem.start[0], problem.start[1], 0.0, 0.0
     setup.setStartState(start)
-    setup.setGoal(_position_goal(ob, info, problem.goal, _inside(params.goal_radius)))
+    setup.setGoal(_position_goal(ob, info, problem.goal, inside(params.goal_radius)))
     if planner == "rrt":
         chosen = oc.RRT(info)
         chosen.setGoalBias(params.goal_bias)
     else:
         chosen = oc.KPIECE1(info)
     setup.setPlanner(chosen)
-    termination = _Termination(time_limit)
+    termination = Termination(time_limit)
     status = setup.solve(ob.PlannerTerminationCondition(termination))
     solved = setup.haveExactSolutionPath()
     trajectory = ()

@@ -1,13 +1,15 @@
 """OMPL as a peer command-line planner: same input, same output, same exit codes.
 
-    python benchmarks/ompl_planner.py [-grad] [-left] [-planner rrt|rrtconnect|kpiece1]
-                                      [-seed N] [-time S] [-stats] < problem.sw
+    python benchmarks/ompl_planner.py [-grad] [-left] [-planner rrt|rrtconnect|kpiece1|prm]
+                                      [-seed N] [-time S] [-stats] < problem
 
-Reads a `.sw` problem on stdin, plans with OMPL's Python bindings (see
-benchmarks/ompl_adapters.py) and prints the trajectory and the tree in our
-format (SPEC 2), so that ``rrt-validator -- python benchmarks/ompl_planner.py``
-checks OMPL's answers and the benchmark harness times whole processes alike.
-Spaceship lines are re-propagated from the start with OMPL's controls.
+Reads a `.sw` problem or a ``kinoplan 1`` problem (SPEC 5) on stdin, plans with
+OMPL's Python bindings (benchmarks/ompl_adapters.py, benchmarks/ompl_family.py)
+and prints the trajectory and the tree in our format (SPEC 2, SPEC 5.4), so that
+``rrt-validator -- python benchmarks/ompl_planner.py`` checks OMPL's answers and
+the benchmark harness times whole processes alike. Spaceship and kinodynamic
+family lines are re-propagated from the start with OMPL's controls (a kinodynamic
+family answer's tree section is empty: the bindings give no edge controls).
 
 Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution within the
 time limit, 4 the ``ompl`` package is not installed.
@@ -21,19 +23,23 @@ import random
 import sys
 
 try:
-    from benchmarks import ompl_adapters
+    from benchmarks import ompl_adapters, ompl_family
 except ModuleNotFoundError:  # run as a script from a checkout that is not installed
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    from benchmarks import ompl_adapters
+    from benchmarks import ompl_adapters, ompl_family
 from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    positive_float, read_problem_from_stdin, vehicle_from_flags)
+                                    is_kinoplan, parse_any_problem, positive_float,
+                                    read_problem_from_stdin, reject_vehicle_flags,
+                                    vehicle_from_flags)
 from planning_core.plan_text import format_plan
 
 EXIT_SOLVED = 0
 EXIT_NO_SOLUTION = 3
 EXIT_NO_OMPL = 4
 DEFAULT_TIME_LIMIT = 30.0
-PLANNER_CHOICES = sorted(set(ompl_adapters.POINT_PLANNERS + ompl_adapters.SPACESHIP_PLANNERS))
+PLANNER_CHOICES = sorted(set(ompl_adapters.POINT_PLANNERS + ompl_adapters.SPACESHIP_PLANNERS
+                             + ompl_family.KINODYNAMIC_PLANNERS
+                             + ompl_family.GEOMETRIC_PLANNERS))
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -42,8 +48,9 @@ def build_parser() -> argparse.ArgumentParser:
                                  "the trajectory and the tree on stdout.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default="rrt", choices=PLANNER_CHOICES,
-                        help="rrt (geometric or control), rrtconnect (point), kpiece1 "
-                             "(spaceship); default rrt")
+                        help="rrt (geometric or control), rrtconnect (point, arm2, rigid2), "
+                             "kpiece1 (spaceship, kinodynamic family), prm (arm2, rigid2); "
+                             "default rrt")
     parser.add_argument("-seed", type=int, default=None)
     parser.add_argument("-time", type=positive_float, default=DEFAULT_TIME_LIMIT, metavar="S")
     parser.add_argument("-stats", action="store_true",
@@ -51,28 +58,44 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _plan(parser, args, seed: int):
+    """OMPL's result and the name of the vehicle or system; None after one line on
+    stderr (bad usage or problem)."""
+    problem = read_problem_from_stdin("ompl_planner", parse_any_problem)
+    if problem is None:
+        return None
+    if is_kinoplan(problem):
+        reject_vehicle_flags(parser, args)
+        name, choices = problem.system_name, ompl_family.planners_for_system(problem.system)
+    else:
+        vehicle = vehicle_from_flags(parser, args)
+        name, choices = vehicle.value, ompl_adapters.planners_for(vehicle)
+    if args.planner not in choices:
+        sys.stderr.write(f"ompl_planner: error: planner {args.planner!r} does not support "
+                         f"the {name} {'system' if is_kinoplan(problem) else 'vehicle'}\n")
+        return None
+    if is_kinoplan(problem):
+        return ompl_family.solve_family(problem, args.planner, args.time, seed), name
+    return ompl_adapters.solve(problem, vehicle, args.planner, args.time, seed), name
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    vehicle = vehicle_from_flags(parser, args)
-    if args.planner not in ompl_adapters.planners_for(vehicle):
-        sys.stderr.write(f"ompl_planner: error: planner {args.planner!r} does not support "
-                         f"the {vehicle.value} vehicle\n")
-        return EXIT_USAGE
-    problem = read_problem_from_stdin("ompl_planner")
-    if problem is None:
-        return EXIT_USAGE
     seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 31)
     try:
-        result = ompl_adapters.solve(problem, vehicle, args.planner, args.time, seed)
+        found = _plan(parser, args, seed)
     except ImportError as error:
         sys.stderr.write(f"ompl_planner: the ompl package is not installed ({error}); "
                          "pip install ompl\n")
         return EXIT_NO_OMPL
+    if found is None:
+        return EXIT_USAGE
+    result, name = found
     if args.stats:
         status = "solved" if result.solved else "time_limit"
         sys.stderr.write(f"ompl_planner stats: status={status} planner=ompl-{args.planner} "
-                         f"vehicle={vehicle.value} seed={seed} iterations={result.iterations} "
+                         f"vehicle={name} seed={seed} iterations={result.iterations} "
                          f"tree_nodes={result.tree_nodes} "
                          f"planning_seconds={result.planning_seconds:.6f}\n")
     if not result.solved:

@@ -58,6 +58,8 @@ class RunRow:
     peak_memory_mb: float | None     # the process's maximum resident set size
     corner_cuts: int          # validator warnings: segments cutting a blocked corner
     validation_seconds: float
+    path_duration: float | None = None
+    """Kinodynamic family, solved runs: total control duration in seconds (sum of K x DT)."""
 
     @property
     def time_seconds(self) -> float:
@@ -68,6 +70,8 @@ class RunRow:
 
 
 FIELD_NAMES = tuple(f.name for f in fields(RunRow))
+_ADDED_LATER = frozenset({"path_duration"})
+"""Columns an older runs.csv may lack (read as their default)."""
 _TYPES = {f.name: f.type for f in fields(RunRow)}
 
 
@@ -146,9 +150,10 @@ def read_csv(path: Path) -> list[RunRow]:
         header = next(reader, None)
         if header is None:
             return []
-        missing = [name for name in FIELD_NAMES if name not in header]
+        missing = [name for name in FIELD_NAMES
+                   if name not in header and name not in _ADDED_LATER]
         if missing:
             raise ValueError(f"{path}: missing columns {missing}")
-        index = {name: header.index(name) for name in FIELD_NAMES}
+        index = {name: header.index(name) for name in FIELD_NAMES if name in header}
         return [RunRow(**{name: _from_text(name, record[index[name]])
-                          for name in FIELD_NAMES}) for record in reader if record]
+                          for name in index}) for record in reader if record]

@@ -30,7 +30,7 @@ class ScriptPlanner(catalog.PlannerChoice):
 
 
 def script_planner(script: str) -> ScriptPlanner:
-    return ScriptPlanner("fake", "ours", "fake", frozenset(Vehicle), script)
+    return ScriptPlanner("fake", "ours", "fake", frozenset(Vehicle), script=script)
 
 
 def test_stats_line_is_parsed():
