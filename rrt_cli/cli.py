@@ -2,8 +2,9 @@
 
 The problem is a `.sw` grid (SPEC 1, its first word an integer) or a ``kinoplan 1``
 problem (SPEC 5, its first word ``kinoplan``): then its ``system`` line names the
-system, the vehicle flags are a usage error, and only RRT plans for it so far
-(the kinodynamic systems: pendulum, car2, unicycle, car1).
+system and the vehicle flags are a usage error; RRT plans for every family
+system, RRT-Connect, PRM and PRM* for the geometric ones (arm2, rigid2), and
+``-smooth`` shortens a geometric system's path.
 
 Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
 its reader gone), 2 bad usage or bad problem, 3 no solution within the limits (or
@@ -54,7 +55,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-iterations", type=positive_int, default=DEFAULT_ITERATIONS,
                         metavar="N", help=f"iteration limit (default: {DEFAULT_ITERATIONS})")
     parser.add_argument("-smooth", action="store_true",
-                        help="point vehicle: shorten the solution by shortcuts (off by default)")
+                        help="geometric systems (point vehicle, arm2, rigid2): shorten the "
+                             "solution by shortcuts (off by default)")
     parser.add_argument("-stats", action="store_true",
                         help="print one line of key=value statistics on stderr")
     return parser
@@ -65,7 +67,7 @@ def _space_information(parser, args, entry):
     vehicle; None after one line on stderr (exit 2)."""
     vehicle = vehicle_from_flags(parser, args)
     if args.smooth and vehicle.system.kinodynamic:
-        parser.error("-smooth works on the point vehicle only")
+        parser.error("-smooth works on geometric systems only (the point vehicle, arm2, rigid2)")
     flags_given = args.ugrad or args.grad or args.left
     if flags_given and not entry.plans_for(vehicle.system):  # refused before reading stdin
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
@@ -76,14 +78,12 @@ def _space_information(parser, args, entry):
         return None
     if is_kinoplan(problem):
         reject_vehicle_flags(parser, args)
-        if args.smooth:
-            parser.error("-smooth works on the point vehicle only")
+        if args.smooth and problem.system.kinodynamic:
+            parser.error("-smooth works on geometric systems only")
         name = problem.system_name
         if not entry.plans_for_kinoplan(problem.system):
-            hint = ("use -planner rrt" if problem.system.kinodynamic
-                    else "no planner plans for geometric kinoplan systems yet")
             say(f"rrt_cli: error: planner {args.planner!r} does not plan for kinoplan "
-                f"problems of the {name} system yet ({hint})")
+                f"problems of the {name} system ({_kinoplan_planners(problem.system)})")
             return None
         return kinoplan_space_information(problem), name
     if not entry.plans_for(vehicle.system):
@@ -91,6 +91,11 @@ def _space_information(parser, args, entry):
             f"{vehicle.value} vehicle")
         return None
     return grid_space_information(problem, vehicle.value), vehicle.value
+
+
+def _kinoplan_planners(system) -> str:
+    names = [name for name, entry in sorted(PLANNERS.items()) if entry.plans_for_kinoplan(system)]
+    return "use -planner " + " or ".join(names) if names else "no planner does yet"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -108,7 +113,7 @@ def main(argv: list[str] | None = None) -> int:
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
     result = planner.solve(si, stop, rng, planner.Params())
     if args.smooth and result.solved:
-        result = dataclasses.replace(result, path=tuple(smooth_path(si.world, result.path, rng)))
+        result = dataclasses.replace(result, path=smooth_path(si, result.path, rng))
     stats = result.stats
     if args.stats:
         # One key=value line, stable for scripts (the benchmark harness parses it).

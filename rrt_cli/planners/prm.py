@@ -1,22 +1,27 @@
 """PRM, the probabilistic roadmap (Kavraki, Svestka, Latombe & Overmars 1996,
 "Probabilistic roadmaps for path planning in high-dimensional configuration
-spaces", IEEE Trans. Robotics and Automation), for the point vehicle; and the
-roadmap machinery that PRM* (:mod:`rrt_cli.planners.prmstar`) shares.
+spaces", IEEE Trans. Robotics and Automation), for the point vehicle and the
+geometric family (arm2, rigid2); and the roadmap machinery that PRM*
+(:mod:`rrt_cli.planners.prmstar`) shares.
 
 Construction and query are separate steps, run in a loop as OMPL's PRM does:
 
-* Construction adds vertices drawn uniformly from the free space and joins each
-  new vertex to its ``k`` nearest roadmap vertices by every straight segment
-  that is exactly collision-free. A union-find structure tracks the connected
-  components as edges are added.
-* The query (A* with the Euclidean heuristic, :mod:`rrt_cli.graph_search`)
+* Construction adds vertices drawn from the free space (``roadmap_sampler``:
+  uniform on the grid; for the family half uniform, half by the bridge test)
+  and joins each new vertex to its ``k`` nearest roadmap vertices (by the
+  metric) by every straight motion that is free (exactly on the grid). The
+  family's roadmap is lazy (``lazy_edges``): it joins all ``k`` and checks a
+  motion, at the check step, only when a query's path takes it. A union-find
+  structure tracks the connected components as edges are added.
+* The query (A* with the metric as heuristic, :mod:`rrt_cli.graph_search`)
   runs once the start and goal vertices are in one component and the roadmap
   has at least ``min_vertices`` vertices; until then construction goes on, one
   vertex at a time, until the :class:`StopCondition` ends it.
 
 The start and the goal are roadmap vertices from the beginning, so the path
-ends exactly at the goal (nudged into the map only when the goal sits on the
-map's left or bottom edge). The output's tree section is the roadmap's edges.
+ends exactly at the goal (``goal_configuration``: on the grid nudged into the
+map only when the goal sits on the map's left or bottom edge). The output's
+tree section is the roadmap's edges found free.
 """
 
 from __future__ import annotations
@@ -28,14 +33,13 @@ from dataclasses import dataclass
 from typing import Callable
 
 from planning_core.space_information import SpaceInformation
-from planning_core.worlds.grid import GridWorld
-from planning_core.worlds.grid_cells import sample_free_point
-from rrt_cli.graph_search import astar
-from planning_core.nearest.quadtree import QuadtreeNearest
+from rrt_cli.graph_search import astar_search
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import first_blocked_segment, path_length
+from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, path_length, straight_lines
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
+LAZY_RETRY_GROWTH = 1.1
+"""A lazy roadmap whose query failed is queried again once it has grown this much."""
 
 
 @dataclass(frozen=True)
@@ -51,71 +55,106 @@ Params = PRMParams
 
 
 class Roadmap:
-    """An undirected graph of free points joined by exactly collision-free segments."""
+    """An undirected graph of valid states joined by free straight motions."""
 
-    def __init__(self, world: GridWorld):
-        self.world = world
-        self.index = QuadtreeNearest(world.width, world.height)
-        self.xs, self.ys = self.index.xs, self.index.ys  # shared, not copied
+    def __init__(self, lines):
+        self.lines = lines
+        self.lazy = lines.lazy_edges
+        self.index = lines.new_index()
+        self.states: list[tuple[float, ...]] = []
         self.adjacency: list[list[tuple[int, float]]] = []
-        self.edges: list[tuple[int, int]] = []
+        self.edges: dict[tuple[int, int], None] = {}  # in the order added
+        self.checked: set[tuple[int, int]] = set()  # motions found free, in that direction
         self._component_parent: list[int] = []
+        self._components_stale = False
 
     def __len__(self) -> int:
-        return len(self.xs)
+        return len(self.states)
 
-    def add_vertex(self, x: float, y: float, neighbors: int) -> int:
-        """Insert (x, y) and join it to each of its ``neighbors`` nearest vertices
-        whose segment to it is free; returns the new vertex."""
-        candidates = self.index.k_nearest(x, y, neighbors) if len(self) else []
-        vertex = self.index.add(x, y)
+    def add_vertex(self, state: tuple[float, ...], neighbors: int) -> int:
+        """Insert ``state`` and join it to each of its ``neighbors`` nearest vertices
+        whose motion to it is free (``lazy``: to each, checked when a path takes
+        it); returns the new vertex."""
+        candidates = self.index.k_nearest(state, neighbors) if len(self) else []
+        vertex = self.index.add(state)
+        self.states.append(state)
         self.adjacency.append([])
         self._component_parent.append(vertex)
-        blocked_on = self.world.first_blocked_cell_on_segment
-        xs, ys = self.xs, self.ys
+        first_hit, states, lazy = self.lines.first_hit, self.states, self.lazy
         for other in candidates:
-            ox, oy = xs[other], ys[other]
-            if blocked_on(x, y, ox, oy) is None:
+            if lazy or first_hit(state, states[other]) is None:
                 self.add_edge(vertex, other)
         return vertex
 
     def add_edge(self, a: int, b: int) -> None:
-        cost = math.hypot(self.xs[a] - self.xs[b], self.ys[a] - self.ys[b])
+        cost = self.lines.distance(self.states[a], self.states[b])
         self.adjacency[a].append((b, cost))
         self.adjacency[b].append((a, cost))
-        self.edges.append((a, b))
-        root_a, root_b = self.component(a), self.component(b)
-        if root_a != root_b:
-            self._component_parent[max(root_a, root_b)] = min(root_a, root_b)
+        self.edges[(a, b)] = None
+        if not self.lazy:
+            self.checked.add((a, b))
+        self._union(a, b)
 
     def remove_edge(self, a: int, b: int) -> None:
-        """Drop an edge and recompute the components (union-find cannot split)."""
+        """Drop an edge; the components are recomputed when next asked (union-find
+        cannot split)."""
         self.adjacency[a] = [(v, c) for v, c in self.adjacency[a] if v != b]
         self.adjacency[b] = [(v, c) for v, c in self.adjacency[b] if v != a]
-        self.edges = [e for e in self.edges if e not in ((a, b), (b, a))]
-        self._component_parent = list(range(len(self)))
-        for u, v in self.edges:
-            root_u, root_v = self.component(u), self.component(v)
-            if root_u != root_v:
-                self._component_parent[max(root_u, root_v)] = min(root_u, root_v)
+        self.edges.pop((a, b), None)
+        self.edges.pop((b, a), None)
+        self._components_stale = True
 
     def component(self, vertex: int) -> int:
+        if self._components_stale:
+            self._component_parent = list(range(len(self)))
+            self._components_stale = False
+            for u, v in self.edges:
+                self._union(u, v)
+        return self._root(vertex)
+
+    def _root(self, vertex: int) -> int:
         parent = self._component_parent
         while parent[vertex] != vertex:
             parent[vertex] = parent[parent[vertex]]  # path halving
             vertex = parent[vertex]
         return vertex
 
-    def shortest_path(self, source: int, target: int) -> list[int] | None:
-        return astar(self.adjacency, self.xs, self.ys, source, target)
+    def _union(self, a: int, b: int) -> None:
+        root_a, root_b = self.component(a), self.component(b)
+        if root_a != root_b:
+            self._component_parent[max(root_a, root_b)] = min(root_a, root_b)
 
-    def points(self, path: list[int]) -> list[tuple[float, float]]:
-        return [(self.xs[v], self.ys[v]) for v in path]
+    def blocked_steps(self, path: list[int]) -> list[tuple[int, int]]:
+        """The steps ``(path[i], path[i+1])`` whose motion is not free in that
+        direction (each step checked once): the first one, or for a lazy roadmap
+        all of them (one A* run then rules out every blocked edge it took)."""
+        first_hit, states, checked = self.lines.first_hit, self.states, self.checked
+        blocked = []
+        for step in zip(path, path[1:]):
+            if step in checked:
+                continue
+            if first_hit(states[step[0]], states[step[1]]) is None:
+                checked.add(step)
+                continue
+            blocked.append(step)
+            if not self.lazy:
+                break
+        return blocked
+
+    def shortest_path(self, source: int, target: int) -> list[int] | None:
+        """A* with the metric to ``target`` as the heuristic."""
+        distance, states, goal = self.lines.distance, self.states, self.states[target]
+        return astar_search(self.adjacency, source, target,
+                            lambda v: distance(states[v], goal))
+
+    def points(self, path: list[int]) -> list[tuple[float, ...]]:
+        return [self.states[v] for v in path]
 
     def edge_states(self) -> tuple[tuple, ...]:
-        """``(from, None, to)`` per edge, in the order they were added."""
-        xs, ys = self.xs, self.ys
-        return tuple(((xs[a], ys[a]), None, (xs[b], ys[b])) for a, b in self.edges)
+        """``(from, None, to)`` per edge found free, in the order they were added."""
+        states, checked = self.states, self.checked
+        return tuple((states[a], None, states[b]) for a, b in self.edges
+                     if (a, b) in checked or (b, a) in checked)
 
 
 @dataclass(frozen=True)
@@ -151,10 +190,14 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
     if si.system.kinodynamic:
         raise ValueError(f"{name} plans for geometric systems only")
     began = time.perf_counter()
-    world = si.world
-    roadmap = Roadmap(world)
-    roadmap.add_vertex(*si.start, neighbors=0)
-    roadmap.add_vertex(*world.printable_point(si.goal.point), neighbors=1)
+    lines = straight_lines(si)
+    roadmap = Roadmap(lines)
+    goal = lines.goal_configuration(rng)
+    roadmap.add_vertex(si.start, neighbors=0)
+    if goal is None:
+        return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (), PlanStats(
+            0, 1, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
+    roadmap.add_vertex(goal, neighbors=1)
 
     def result(status: PlanStatus, path: list[int] | None, iterations: int, message=""):
         trajectory = () if path is None else tuple(roadmap.points(path))
@@ -167,16 +210,18 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
         return result(PlanStatus.UNREACHABLE, None, 0,
                       "no chain of free cells joins the start and the goal")
 
-    free_cells = world.free_cell_indices(stop.time_is_up)
-    width = world.width
+    draw_free = lines.roadmap_sampler(rng, stop.time_is_up)
     iterations = 0
     solution: list[int] | None = None
-    next_query = 0
+    next_query, first_try = 0, min_vertices
     while True:
         if solution is None:
-            if (len(roadmap) >= min_vertices
+            if (len(roadmap) >= first_try
                     and roadmap.component(START) == roadmap.component(GOAL)):
-                solution = _query(roadmap, world)
+                solution = _query(roadmap, stop)
+                if solution is None and roadmap.lazy:
+                    # Connected only through edges not yet checked: grow before retrying.
+                    first_try = math.ceil(len(roadmap) * LAZY_RETRY_GROWTH)
                 if solution is not None:
                     next_query = math.ceil(len(roadmap) * refinement.growth)
                     # Final if no growth is asked for, if it is the straight line
@@ -185,9 +230,9 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
                             or next_query > refinement.max_vertices):
                         return result(PlanStatus.SOLVED, solution, iterations)
         elif len(roadmap) >= next_query:
-            shorter = _query(roadmap, world) or solution
-            gain = 1.0 - (path_length(roadmap.points(shorter))
-                          / path_length(roadmap.points(solution)))
+            shorter = _query(roadmap, stop) or solution
+            gain = 1.0 - (path_length(roadmap.points(shorter), lines.distance)
+                          / path_length(roadmap.points(solution), lines.distance))
             solution = shorter
             next_query = math.ceil(len(roadmap) * refinement.growth)
             if (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
@@ -196,26 +241,27 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
         limit = stop.status(iterations)
         if limit is not None:
             if solution is not None:
-                return result(PlanStatus.SOLVED, _query(roadmap, world) or solution, iterations)
+                return result(PlanStatus.SOLVED, _query(roadmap, stop) or solution, iterations)
             return result(limit, None, iterations)
         iterations += 1
-        x, y = sample_free_point(rng, free_cells, width)
-        roadmap.add_vertex(x, y, neighbor_count(len(roadmap) + 1))
+        roadmap.add_vertex(draw_free(), neighbor_count(len(roadmap) + 1))
 
 
-def _query(roadmap: Roadmap, world: GridWorld) -> list[int] | None:
-    """A* from start to goal, re-checking the answer's segments in the direction
-    they are travelled; an edge that fails that way (a rounding tie at a cell's
-    edge) is dropped and the search runs again."""
-    while True:
+def _query(roadmap: Roadmap, stop: StopCondition) -> list[int] | None:
+    """A* from start to goal, checking the answer's motions in the direction they
+    are travelled; an edge that fails that way (never checked: a lazy roadmap's;
+    a rounding tie at a cell's edge; samples that differ the other way round) is
+    dropped and the search runs again, until the time is up."""
+    while not stop.time_is_up():
         path = roadmap.shortest_path(START, GOAL)
         if path is None:
             return None
-        points = roadmap.points(path)
-        bad = first_blocked_segment(world, points)
-        if bad is None:
+        blocked = roadmap.blocked_steps(path)
+        if not blocked:
             return path
-        roadmap.remove_edge(path[bad], path[bad + 1])
+        for a, b in blocked:
+            roadmap.remove_edge(a, b)
+    return None
 
 
 @guarded

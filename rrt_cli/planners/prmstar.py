@@ -1,10 +1,12 @@
 """PRM* (Karaman & Frazzoli 2011, "Sampling-based algorithms for optimal motion
-planning", IJRR), the k-nearest variant, for the point vehicle.
+planning", IJRR), the k-nearest variant, for the point vehicle and the geometric
+family (arm2, rigid2).
 
 The roadmap and the query are PRM's (:mod:`rrt_cli.planners.prm`); the
 connection rule differs: a new vertex tries its ``k = ceil(e (1 + 1/d) log n)``
-nearest vertices, where ``n`` is the roadmap's size and ``d = 2`` the dimension
-of the plane. k grows with the roadmap just fast enough for the roadmap's
+nearest vertices, where ``n`` is the roadmap's size and ``d`` the dimension of
+the space (2 for the plane and the arm's torus, 3 for SE(2)); seed 004's
+``k = ceil(log n)`` is ``log_neighbors``. k grows with the roadmap just fast enough for the roadmap's
 shortest paths to converge to optimal ones.
 
 PRM* is an anytime planner (OMPL's runs until its time is up). This one stops
@@ -23,12 +25,14 @@ Every rule counts vertices, not seconds, so ``-seed`` reproduces the run.
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 from dataclasses import dataclass
 
 from planning_core.space_information import SpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
+from rrt_cli.planners.point_common import straight_lines
 from rrt_cli.planners.prm import Refinement, plan_with_roadmap
 
 DIMENSION = 2
@@ -51,6 +55,8 @@ class PRMStarParams:
     nothing (a small roadmap's path improves in jumps; about 0.05 s)."""
     min_vertices: int = 0
     """The first query waits until the roadmap has this many vertices."""
+    log_neighbors: bool = False
+    """Seed 004's rule k = ceil(log n) instead of k = ceil(e (1 + 1/d) log n)."""
 
 
 Params = PRMStarParams
@@ -63,10 +69,20 @@ def star_neighbor_count(vertices: int, dimension: int = DIMENSION) -> int:
     return max(1, math.ceil(math.e * (1.0 + 1.0 / dimension) * math.log(vertices)))
 
 
+def log_neighbor_count(vertices: int) -> int:
+    """Seed 004's k = ceil(log n), at least 1."""
+    return max(1, math.ceil(math.log(vertices))) if vertices >= 2 else 1
+
+
 @guarded
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: PRMStarParams = PRMStarParams()) -> PlanResult:
     refinement = Refinement(params.growth_after_connection, params.min_improvement,
                             params.max_refined_vertices, params.min_refined_vertices)
-    return plan_with_roadmap(si, stop, rng, star_neighbor_count, params.min_vertices,
+    if params.log_neighbors:
+        neighbor_count = log_neighbor_count
+    else:
+        dimension = straight_lines(si).dimension
+        neighbor_count = functools.partial(star_neighbor_count, dimension=dimension)
+    return plan_with_roadmap(si, stop, rng, neighbor_count, params.min_vertices,
                              refinement, "prmstar")

@@ -1,5 +1,6 @@
 """RRT-Connect (Kuffner & LaValle 2000, "RRT-Connect: An efficient approach to
-single-query path planning", ICRA) for the point vehicle.
+single-query path planning", ICRA) for the point vehicle and the geometric
+family (arm2, rigid2).
 
 Two trees grow, one from the start and one from the goal, and swap roles every
 iteration. The active tree *extends* one step toward a random target; when
@@ -8,17 +9,18 @@ extends toward it again and again while each step advances (neither reaching
 it nor being trapped). When the connect reaches the node exactly, the trees
 meet and the path is start tree -> meeting point -> goal tree.
 
-Steps are straight segments checked exactly against the grid
-(:class:`PointSteering`, as RRT uses); with ``max_step`` a step stops after
-that distance, and with ``partial_extension`` a blocked step goes as far as it
-is free. The goal tree's segments are checked in the direction the path will
-travel them (toward the goal). The goal tree's root is the goal point itself,
-so the path ends exactly at the goal.
+Steps are straight motions (:class:`StraightLineSteering`, as RRT uses:
+checked exactly against the grid, at the check step for the family); with
+``max_step`` a step stops after that distance, and with ``partial_extension`` a
+blocked step goes as far as it is free. The goal tree's motions are checked in
+the direction the path will travel them (toward the goal). The goal tree's root
+is the goal itself (``goal_configuration``), so the path ends exactly there.
 
 The paper draws targets uniformly; here, by default, 90% come from the trees'
 frontier (free cells without a node beside cells with one,
 :mod:`planning_core.worlds.grid_frontier`), which in a maze is what keeps the trees
 advancing: see ``RRTConnectParams.frontier_targets`` (0 restores the paper).
+The geometric family has no frontier: its targets are uniform valid configurations.
 
 The tree section of the output lists both trees' edges, goal-tree edges
 pointing toward the goal.
@@ -26,17 +28,15 @@ pointing toward the goal.
 
 from __future__ import annotations
 
-import math
 import random
 import time
 from dataclasses import dataclass
 from enum import Enum
 
 from planning_core.space_information import SpaceInformation
-from planning_core.worlds.grid_cells import sample_free_point
 from planning_core.worlds.grid_frontier import FrontierCells
-from planning_core.nearest.quadtree import QuadtreeNearest
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
+from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, straight_lines
 from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree
 
@@ -44,7 +44,7 @@ from rrt_cli.planners.tree import MotionTree
 @dataclass(frozen=True)
 class RRTConnectParams:
     max_step: float = 0.0
-    """Longest single extension, in map units; 0 means unlimited (straight to the
+    """Longest single extension (map units; the metric for the family); 0: unlimited (straight to the
     target when the segment is free, as the course's RRT steers). OMPL's "range"."""
     partial_extension: bool = True
     """Extend: a blocked step goes as far as it is free instead of adding nothing."""
@@ -77,12 +77,12 @@ class _Grow(Enum):
 
 
 class _Tree(MotionTree):
-    """One tree with a nearest index over its positions."""
+    """One tree with a nearest index over its states."""
 
-    def __init__(self, root: tuple[float, float], width: int, height: int, toward_root: bool):
+    def __init__(self, root: tuple[float, ...], index, toward_root: bool):
         super().__init__(root)
-        self.index = QuadtreeNearest(width, height)
-        self.index.add(*root)
+        self.index = index
+        self.index.add(root)
         # The goal tree's edges are travelled child -> parent by the final path.
         self.toward_root = toward_root
 
@@ -95,7 +95,7 @@ class _Grower:
 
     def __init__(self, si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
                  frontier: FrontierCells | None):
-        self.si = si
+        self.lines = straight_lines(si)
         self.frontier = frontier
         self.max_step = params.max_step
         self.extend_steering = StraightLineSteering(si, params.partial_extension,
@@ -107,25 +107,23 @@ class _Grower:
     def grow(self, tree: _Tree, target: tuple[float, float],
              connecting: bool = False) -> tuple[_Grow, int]:
         """The outcome and the index of the node added (-1 when trapped)."""
-        near = tree.index.nearest(*target)
-        nx, ny = tree.states[near]
-        tx, ty = target
+        near = tree.index.nearest(target)
+        near_state = tree.states[near]
         clipped = False
         if self.max_step > 0.0:
-            distance = math.hypot(tx - nx, ty - ny)
+            distance = self.lines.distance(near_state, target)
             if distance > self.max_step:
-                t = self.max_step / distance
-                tx, ty = nx + (tx - nx) * t, ny + (ty - ny) * t
+                target = self.lines.interpolate(near_state, target, self.max_step / distance)
                 clipped = True
         steering = self.connect_steering if connecting else self.extend_steering
-        step = steering.extend((nx, ny), (tx, ty), self.rng)
+        step = steering.extend(near_state, target, self.rng)
         if step is None:
             return _Grow.TRAPPED, -1
         new = step[0]
-        if tree.toward_root and self.si.first_hit(new, (nx, ny)) is not None:
-            return _Grow.TRAPPED, -1  # free one way only: a rounding tie at a cell edge
+        if tree.toward_root and self.lines.first_hit(new, near_state) is not None:
+            return _Grow.TRAPPED, -1  # free one way only (a rounding tie, other samples)
         added = tree.add(near, new)
-        tree.index.add(*new)
+        tree.index.add(new)
         if self.frontier is not None:
             self.frontier.cover(new)
         reached = not clipped and new == target
@@ -136,10 +134,7 @@ def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.
                     frontier: FrontierCells | None, stop: StopCondition):
     """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
     if params.free_space_targets:
-        free_cells, width = si.world.free_cell_indices(stop.time_is_up), si.world.width
-
-        def draw_uniform_target():
-            return sample_free_point(rng, free_cells, width)
+        draw_uniform_target = straight_lines(si).free_sampler(rng, stop.time_is_up)
     else:
         def draw_uniform_target():
             return si.sample_target(rng)
@@ -162,10 +157,13 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
     if si.system.kinodynamic:
         raise ValueError("rrtconnect plans for geometric systems only")
     began = time.perf_counter()
-    width, height = si.world.width, si.world.height
-    start, goal = si.start, si.world.printable_point(si.goal.point)
-    start_tree = _Tree(start, width, height, toward_root=False)
-    goal_tree = _Tree(goal, width, height, toward_root=True)
+    lines = straight_lines(si)
+    start, goal = si.start, lines.goal_configuration(rng)
+    if goal is None:
+        return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (),
+                          PlanStats(0, 0, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
+    start_tree = _Tree(start, lines.new_index(), toward_root=False)
+    goal_tree = _Tree(goal, lines.new_index(), toward_root=True)
 
     def result(status: PlanStatus, path, iterations: int, message: str = ""):
         edges = start_tree.edges() + goal_tree.edges(toward_root=True)
@@ -178,7 +176,7 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
     if si.goal_certainly_unreachable(stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, (), 0,
                       "no chain of free cells joins the start and the goal")
-    frontier = si.world.frontier() if params.frontier_targets > 0.0 else None
+    frontier = lines.frontier() if params.frontier_targets > 0.0 else None
     if frontier is not None:
         frontier.cover(start)
         frontier.cover(goal)

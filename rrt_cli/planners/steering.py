@@ -1,8 +1,10 @@
 """How a tree node moves toward a random target, by the kind of system.
 
 Geometric systems go straight to the target when the motion is free (checked
-exactly); otherwise, with ``partial_extension``, toward the first invalid state,
-stopping ``wall_clearance`` short of it. Kinodynamic systems try
+exactly on the grid, at the check step for the geometric family); otherwise,
+with ``partial_extension``, toward the first invalid state, stopping
+``wall_clearance`` short of it (``si``'s clearance: on the grid that many map
+units, for the family one check step). Kinodynamic systems try
 ``controls_per_extension`` random controls, each held for one step (kinoplan
 systems: K slices, K drawn with the control); the valid one ending closest to
 the target by ``si.closeness`` wins (SPEC 2: by position on the grid; SPEC 5.3:
@@ -15,32 +17,35 @@ import math
 import random
 
 from planning_core.space_information import SpaceInformation
+from rrt_cli.planners.point_common import straight_lines
 
 
 class StraightLineSteering:
     def __init__(self, si: SpaceInformation, partial_extension: bool, min_extension: float,
                  wall_clearance: float):
-        self.si = si
+        lines = straight_lines(si)
+        self.first_hit, self.can_end_at = lines.first_hit, lines.can_end_at
+        self.distance, self.interpolate = lines.distance, lines.interpolate
+        self.rechecks_prefix = lines.rechecks_prefix
         self.partial_extension = partial_extension
         self.min_extension = min_extension
-        self.wall_clearance = wall_clearance
+        self.wall_clearance = lines.clearance(wall_clearance)
 
-    def extend(self, state: tuple[float, ...], target: tuple[float, float],
-               rng: random.Random) -> tuple[tuple[float, float], None] | None:
-        x0, y0 = state
-        tx, ty = target
-        hit = self.si.first_hit(state, target)
+    def extend(self, state: tuple[float, ...], target: tuple[float, ...],
+               rng: random.Random) -> tuple[tuple[float, ...], None] | None:
+        hit = self.first_hit(state, target)
         if hit is None:
-            return ((tx, ty), None)
+            return (tuple(target), None)
         if not self.partial_extension:
             return None
-        length = math.hypot(tx - x0, ty - y0)
+        length = self.distance(state, target)
         reach = hit.fraction * length - self.wall_clearance
         if reach < self.min_extension:
             return None
-        t = reach / length
-        end = (x0 + (tx - x0) * t, y0 + (ty - y0) * t)
-        if not (self.si.is_valid(end) and self.si.printable(*end)):
+        end = self.interpolate(state, target, reach / length)
+        if not self.can_end_at(end):
+            return None
+        if self.rechecks_prefix and self.first_hit(state, end) is not None:
             return None
         return (end, None)
 
