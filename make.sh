@@ -4,6 +4,9 @@
 #                        benchmark tools, and OMPL's Python bindings where PyPI has a wheel
 #                        (OMPL is optional: the benchmarks and their tests skip it with a note)
 #   ./make.sh validator  the project and reportlab only: what the validator's PDF needs
+# "all" also compiles the hot modules with mypyc into .build/compiled where a C compiler is
+# (else one line says so; ./run.sh then runs the same source interpreted), and rebuilds them
+# whenever their source changed.
 # The planner needs none of this (./run.sh runs on a bare python3). Idempotent. Quiet: one
 # progress line per step on stderr; pip's output goes to .venv/make.log, shown on failure.
 # PYTHON=/path/to/python3 picks the interpreter (default: python3 on PATH, 3.10 or newer).
@@ -13,7 +16,7 @@ cd "$(dirname "$0")"
 case ${1:-all} in
     all) target=all ;;
     validator) target=validator ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "make.sh: unknown target '$1' (use: ./make.sh [all | validator])" >&2; exit 2 ;;
 esac
 PYTHON=${PYTHON:-python3}
@@ -68,25 +71,59 @@ link_scripts() {
 PIP=(.venv/bin/python -m pip install --disable-pip-version-check --no-input)
 [ -x .venv/bin/python ] || make_venv
 
+install() {
+    unlink_scripts
+    if [ "$target" = validator ]; then
+        step "installing the project and reportlab"
+        quietly "${PIP[@]}" -e .
+    else
+        step "installing the project, reportlab, the test and benchmark tools"
+        quietly "${PIP[@]}" -e ".[test,bench]"
+        step "installing OMPL's Python bindings (optional)"
+        if ! "${PIP[@]}" -e ".[ompl]" >>"$LOG" 2>&1; then
+            step "note: ompl could not be installed (see $LOG); OMPL comparisons will be skipped"
+        fi
+        step "installing Dask's distributed, for rrt-grade --scheduler (optional)"
+        if ! "${PIP[@]}" -e ".[grade]" >>"$LOG" 2>&1; then
+            step "note: distributed could not be installed (see $LOG); rrt-grade runs locally only"
+        fi
+        step "installing mypy, the hot modules' compiler (optional)"
+        if ! "${PIP[@]}" -e ".[compile]" >>"$LOG" 2>&1; then
+            step "note: mypy could not be installed (see $LOG); the hot modules run interpreted"
+        fi
+        touch .venv/.installed-validator
+    fi
+    link_scripts
+    touch "$stamp"
+    step "ready"
+}
+
+# The hot modules compiled into .build/compiled (tools/build_compiled.py), unless the
+# build there already matches their source. Never fails the set-up: without a compiler
+# or mypy the same source runs interpreted.
+compile_hot_modules() {
+    local python=(env -u RRT_INTERPRETED .venv/bin/python)
+    if "${python[@]}" -c 'import sys; from planning_core.compiled import BUILD_DIR, why_not_fresh
+sys.exit(why_not_fresh(BUILD_DIR) is not None)' 2>/dev/null; then
+        return 0
+    fi
+    if ! command -v "${CC:-cc}" >/dev/null 2>&1; then
+        step "note: no C compiler (${CC:-cc}); the hot modules run interpreted"; return 0
+    fi
+    if ! "${python[@]}" -c 'import mypyc' 2>/dev/null; then
+        step "note: mypy is not installed; the hot modules run interpreted"; return 0
+    fi
+    step "compiling the hot modules (mypyc) into .build/compiled"
+    if ! "${python[@]}" tools/build_compiled.py >>"$LOG" 2>&1; then
+        step "note: compiling failed (see $LOG); the hot modules run interpreted"
+    fi
+}
+
 # .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.
 stamp=.venv/.installed
 [ "$target" = validator ] && stamp=.venv/.installed-validator
-if [ -f "$stamp" ] && [ ! pyproject.toml -nt "$stamp" ]; then
-    exit 0
+if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
+    install
 fi
-unlink_scripts
-if [ "$target" = validator ]; then
-    step "installing the project and reportlab"
-    quietly "${PIP[@]}" -e .
-else
-    step "installing the project, reportlab, the test and benchmark tools"
-    quietly "${PIP[@]}" -e ".[test,bench]"
-    step "installing OMPL's Python bindings (optional)"
-    if ! "${PIP[@]}" -e ".[ompl]" >>"$LOG" 2>&1; then
-        step "note: ompl could not be installed (see $LOG); OMPL comparisons will be skipped"
-    fi
-    touch .venv/.installed-validator
-fi
-link_scripts
-touch "$stamp"
-step "ready"
+[ "$target" = all ] && compile_hot_modules
+exit 0

@@ -4,7 +4,9 @@
 # Needs only python3 (3.10 or newer), no set-up: the planner uses the standard library
 # alone. It runs the interpreter ./make.sh set up (.venv) when there is one, else python3
 # from PATH, with -S -I: no site-packages and no PYTHON* variables, so nothing but the
-# standard library and this checkout is imported. Bytecode is cached under
+# standard library and this checkout is imported. The hot modules ./make.sh compiled
+# (.build/compiled, planning_core/compiled.py) are used when they match their source, else
+# the same source runs interpreted; -stats says which. Bytecode is cached under
 # ~/.cache/rrt-gridplan (XDG_CACHE_HOME), so the checkout is left as it was.
 # stdout carries only the answer.
 case $0 in */*) here=${0%/*} ;; *) here=. ;; esac
@@ -30,6 +32,13 @@ if sys.version_info < (3, 10):
                      % (sys.executable, sys.version.split()[0]))
     sys.exit(127)
 sys.path.insert(0, os.path.abspath(sys.argv.pop(1)))
+try:
+    from planning_core.compiled import activate
+    build = activate()
+except ImportError:  # a checkout without the loader
+    build = "interpreted: no planning_core.compiled"
+if "-stats" in sys.argv:
+    sys.stderr.write("rrt_cli build: %s\n" % build)
 from rrt_cli.cli import entry_point
 entry_point()
 ' "$here" "$@"

@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Set up (if needed) and run the whole test suite on all cores.
+# Set up (if needed) and run the whole test suite on all cores. The golden test replays the
+# pinned outputs interpreted and, when ./make.sh could compile the hot modules, compiled too;
+# the first line says which.
 set -euo pipefail
 cd "$(dirname "$0")"
 ./make.sh
+env -u RRT_INTERPRETED .venv/bin/python -c 'from planning_core.compiled import activate
+print("test.sh: hot modules:", activate())' >&2
 exec .venv/bin/python -m pytest -n auto -q "$@"

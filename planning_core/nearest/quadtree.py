@@ -13,6 +13,29 @@ import heapq
 import math
 
 
+class _Node:
+    """A box of the quadtree: a leaf holds point indices, an inner node four children
+    (0 bottom-left, 1 bottom-right, 2 top-left, 3 top-right of its centre)."""
+
+    __slots__ = ("x0", "y0", "x1", "y1", "cx", "cy", "children", "indices")
+
+    def __init__(self, x0: float, y0: float, x1: float, y1: float) -> None:
+        self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
+        self.cx, self.cy = (x0 + x1) * 0.5, (y0 + y1) * 0.5
+        self.children: list[_Node] | None = None
+        self.indices: list[int] = []
+
+    def quadrant(self, x: float, y: float) -> int:
+        return (1 if x >= self.cx else 0) + (2 if y >= self.cy else 0)
+
+
+class _Scan:
+    """What a query keeps while the walk visits leaves: ``scan`` reads a leaf's
+    points and returns the squared distance to prune by from then on."""
+
+    def scan(self, indices: list[int]) -> float:
+        raise NotImplementedError
+
 
 class QuadtreeNearest:
     """A bucketed point-region quadtree over the map's rectangle.
@@ -23,12 +46,11 @@ class QuadtreeNearest:
     cost grows with the tree's depth, not its size, whatever the clustering.
     """
 
-    def __init__(self, width: float, height: float, leaf_capacity: int = 12):
+    def __init__(self, width: float, height: float, leaf_capacity: int = 12) -> None:
         self.xs: list[float] = []
         self.ys: list[float] = []
         self.leaf_capacity = leaf_capacity
-        # A node is a list: [x0, y0, x1, y1, children | None, indices | None].
-        self.root: list = [0.0, 0.0, float(width), float(height), None, []]
+        self.root = _Node(0.0, 0.0, float(width), float(height))
 
     def __len__(self) -> int:
         return len(self.xs)
@@ -39,73 +61,60 @@ class QuadtreeNearest:
         self.xs.append(x)
         self.ys.append(y)
         node = self.root
-        while node[4] is not None:
-            node = node[4][_quadrant(node, x, y)]
-        node[5].append(index)
-        if len(node[5]) > self.leaf_capacity and node[2] - node[0] > _MIN_NODE_SIZE:
+        children = node.children
+        while children is not None:
+            node = children[node.quadrant(x, y)]
+            children = node.children
+        node.indices.append(index)
+        if len(node.indices) > self.leaf_capacity and node.x1 - node.x0 > _MIN_NODE_SIZE:
             self._split(node)
         return index
 
-    def _split(self, node: list) -> None:
-        x0, y0, x1, y1 = node[0], node[1], node[2], node[3]
-        cx, cy = (x0 + x1) * 0.5, (y0 + y1) * 0.5
-        node[4] = [[x0, y0, cx, cy, None, []], [cx, y0, x1, cy, None, []],
-                   [x0, cy, cx, y1, None, []], [cx, cy, x1, y1, None, []]]
-        indices, node[5] = node[5], None
+    def _split(self, node: _Node) -> None:
+        x0, y0, x1, y1, cx, cy = node.x0, node.y0, node.x1, node.y1, node.cx, node.cy
+        children = [_Node(x0, y0, cx, cy), _Node(cx, y0, x1, cy),
+                    _Node(x0, cy, cx, y1), _Node(cx, cy, x1, y1)]
+        node.children = children
         xs, ys = self.xs, self.ys
-        for index in indices:
-            child = node[4][_quadrant(node, xs[index], ys[index])]
-            child[5].append(index)
-        for child in node[4]:
+        for index in node.indices:
+            children[node.quadrant(xs[index], ys[index])].indices.append(index)
+        node.indices = []
+        for child in children:
             # All points may land in one quadrant (duplicates, tight clusters).
-            if len(child[5]) > self.leaf_capacity and child[2] - child[0] > _MIN_NODE_SIZE:
+            if len(child.indices) > self.leaf_capacity and child.x1 - child.x0 > _MIN_NODE_SIZE:
                 self._split(child)
 
-    def _search(self, x: float, y: float, visit) -> None:
+    def _search(self, x: float, y: float, keep: _Scan) -> None:
         """Walk the leaves that may hold a point closer than the bound, nearest
-        quadrant first: ``visit(indices)`` scans a leaf and returns the bound
-        (squared distance) to prune by from then on."""
+        quadrant first, ``keep.scan`` reading each leaf that has points."""
         bound = math.inf
         stack = [self.root]
-        pop, push = stack.pop, stack.append
         while stack:
-            node = pop()
+            node = stack.pop()
             # Squared distance from the query to the node's box.
-            gx = node[0] - x if x < node[0] else (x - node[2] if x > node[2] else 0.0)
-            gy = node[1] - y if y < node[1] else (y - node[3] if y > node[3] else 0.0)
+            gx = node.x0 - x if x < node.x0 else (x - node.x1 if x > node.x1 else 0.0)
+            gy = node.y0 - y if y < node.y0 else (y - node.y1 if y > node.y1 else 0.0)
             if gx * gx + gy * gy > bound:
                 continue
-            children = node[4]
+            children = node.children
             if children is None:
-                bound = visit(node[5])
+                if node.indices:
+                    bound = keep.scan(node.indices)
                 continue
             # Push the far quadrants first so the query's own quadrant pops first.
-            q = _quadrant(node, x, y)
-            push(children[3 - q])
-            push(children[q ^ 1])
-            push(children[q ^ 2])
-            push(children[q])
+            q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)  # node.quadrant, inline
+            stack.append(children[3 - q])
+            stack.append(children[q ^ 1])
+            stack.append(children[q ^ 2])
+            stack.append(children[q])
 
     def nearest(self, x: float, y: float) -> int:
         """Index of the point closest to (x, y); ties go to the earliest inserted."""
         if not self.xs:
             raise ValueError("nearest() on an empty structure")
-        xs, ys = self.xs, self.ys
-        best = [math.inf, -1]  # squared distance, index
-
-        def visit(indices: list[int]) -> float:
-            best_d2, best_index = best
-            for index in indices:
-                ddx = xs[index] - x
-                ddy = ys[index] - y
-                d2 = ddx * ddx + ddy * ddy
-                if d2 < best_d2 or (d2 == best_d2 and index < best_index):
-                    best_d2, best_index = d2, index
-            best[0], best[1] = best_d2, best_index
-            return best_d2
-
-        self._search(x, y, visit)
-        return best[1]
+        best = _Nearest(self.xs, self.ys, x, y)
+        self._search(x, y, best)
+        return best.index
 
     def k_nearest(self, x: float, y: float, k: int) -> list[int]:
         """Indices of the ``k`` points closest to (x, y), nearest first.
@@ -116,33 +125,55 @@ class QuadtreeNearest:
         """
         if k <= 0:
             return []
-        xs, ys = self.xs, self.ys
-        # Max-heap of the k best so far, as (-d2, -index): the top is the worst kept.
-        kept: list[tuple[float, int]] = []
+        kept = _KNearest(self.xs, self.ys, x, y, k)
+        self._search(x, y, kept)
+        kept.heap.sort(reverse=True)
+        return [-negated_index for _, negated_index in kept.heap]
 
-        def visit(indices: list[int]) -> float:
-            for index in indices:
-                ddx = xs[index] - x
-                ddy = ys[index] - y
-                d2 = ddx * ddx + ddy * ddy
-                if len(kept) < k:
-                    heapq.heappush(kept, (-d2, -index))
-                elif d2 < -kept[0][0] or (d2 == -kept[0][0] and index < -kept[0][1]):
-                    heapq.heapreplace(kept, (-d2, -index))
-            return -kept[0][0] if len(kept) == k else math.inf
 
-        self._search(x, y, visit)
-        kept.sort(reverse=True)
-        return [-negated_index for _, negated_index in kept]
+class _Nearest(_Scan):
+    """The nearest point so far: its squared distance and index."""
+
+    def __init__(self, xs: list[float], ys: list[float], x: float, y: float) -> None:
+        self.xs, self.ys, self.x, self.y = xs, ys, x, y
+        self.d2 = math.inf
+        self.index = -1
+
+    def scan(self, indices: list[int]) -> float:
+        xs, ys, x, y = self.xs, self.ys, self.x, self.y
+        best_d2, best_index = self.d2, self.index
+        for index in indices:
+            ddx = xs[index] - x
+            ddy = ys[index] - y
+            d2 = ddx * ddx + ddy * ddy
+            if d2 < best_d2 or (d2 == best_d2 and index < best_index):
+                best_d2, best_index = d2, index
+        self.d2, self.index = best_d2, best_index
+        return best_d2
+
+
+class _KNearest(_Scan):
+    """The ``k`` best so far as a max-heap of ``(-d2, -index)``: the top is the worst kept."""
+
+    def __init__(self, xs: list[float], ys: list[float], x: float, y: float, k: int) -> None:
+        self.xs, self.ys, self.x, self.y, self.k = xs, ys, x, y, k
+        self.heap: list[tuple[float, int]] = []
+
+    def scan(self, indices: list[int]) -> float:
+        xs, ys, x, y, k, kept = self.xs, self.ys, self.x, self.y, self.k, self.heap
+        for index in indices:
+            ddx = xs[index] - x
+            ddy = ys[index] - y
+            d2 = ddx * ddx + ddy * ddy
+            if len(kept) < k:
+                heapq.heappush(kept, (-d2, -index))
+            elif d2 < -kept[0][0] or (d2 == -kept[0][0] and index < -kept[0][1]):
+                heapq.heapreplace(kept, (-d2, -index))
+        return -kept[0][0] if len(kept) == k else math.inf
 
 
 # Below this box width a leaf stops splitting (only exact duplicates get there).
 _MIN_NODE_SIZE = 1e-9
-
-
-def _quadrant(node: list, x: float, y: float) -> int:
-    """0 bottom-left, 1 bottom-right, 2 top-left, 3 top-right of the node's centre."""
-    return (x >= (node[0] + node[2]) * 0.5) + 2 * (y >= (node[1] + node[3]) * 0.5)
 
 
 class LinearNearest:

@@ -12,16 +12,21 @@ from typing import ClassVar
 State = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class PointVehicle:
-    name: str = "point"
-    """The name the registry and the validator's report use."""
+class PointVariables:
+    """The point's declarations (a plain base: mypyc drops ``ClassVar`` from a
+    dataclass's own annotations)."""
 
     kinodynamic: ClassVar[bool] = False
     state_names: ClassVar[tuple[str, ...]] = ("x", "y")
     control_names: ClassVar[tuple[str, ...]] = ()
     position_indices: ClassVar[tuple[int, ...]] = (0, 1)
     velocity_indices: ClassVar[tuple[int, ...]] = ()
+
+
+@dataclass(frozen=True)
+class PointVehicle(PointVariables):
+    name: str = "point"
+    """The name the registry and the validator's report use."""
 
     def state_space(self, width: float, height: float):
         """The map's rectangle, Euclidean distance."""

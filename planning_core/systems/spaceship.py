@@ -23,8 +23,21 @@ State = tuple[float, float, float, float]
 Control = tuple[float, float]
 
 
+class SpaceshipVariables:
+    """What every ship declares, whatever its parameters. (Class constants live in
+    this plain base: mypyc drops ``ClassVar`` from a dataclass's own annotations.)"""
+
+    kinodynamic: ClassVar[bool] = True
+    state_names: ClassVar[tuple[str, ...]] = ("x", "y", "dx", "dy")
+    control_names: ClassVar[tuple[str, ...]] = ("theta", "s")
+    position_indices: ClassVar[tuple[int, ...]] = (0, 1)
+    velocity_indices: ClassVar[tuple[int, ...]] = (2, 3)
+    slices: ClassVar[int] = SLICES
+    rest_control: ClassVar[Control] = (0.0, 0.0)
+
+
 @dataclass(frozen=True)
-class Spaceship:
+class Spaceship(SpaceshipVariables):
     """A kinodynamic system: a control held for one step of ``SLICES`` slices."""
 
     name: str = "spaceship"
@@ -34,14 +47,6 @@ class Spaceship:
     printed theta (mod 2 pi) must lie in the closed ``[0, theta_range]``."""
     max_thrust: float = MAX_THRUST
     """Thrust ``s`` is in ``[0, max_thrust]``."""
-
-    kinodynamic: ClassVar[bool] = True
-    state_names: ClassVar[tuple[str, ...]] = ("x", "y", "dx", "dy")
-    control_names: ClassVar[tuple[str, ...]] = ("theta", "s")
-    position_indices: ClassVar[tuple[int, ...]] = (0, 1)
-    velocity_indices: ClassVar[tuple[int, ...]] = (2, 3)
-    slices: ClassVar[int] = SLICES
-    rest_control: ClassVar[Control] = (0.0, 0.0)
 
     @property
     def full_turn(self) -> bool:
@@ -104,6 +109,12 @@ class Spaceship:
                         slices_out: list[State] | None = None) -> State | None:
         """Apply ``control`` from ``state`` for one timestep, slice by slice.
 
+        Each slice thrusts at theta from the direction of motion: in motion, the
+        velocity's unit vector turned by theta, whose cos and sin are taken once
+        per control, so a slice costs one square root and no other transcendental
+        call (docs/hot-paths.md); at rest, ``atan2(dy, dx) + theta`` as SPEC
+        writes it (theta from +x, or from -x for a velocity of -0.0).
+
         ``grid``: the occupancy grid the ship flies over (anything with row-major
         ``blocked`` cells, ``width`` and ``height``, such as a GridWorld): None is
         returned as soon as a slice's position is outside it or in a blocked cell
@@ -114,13 +125,20 @@ class Spaceship:
         x, y, dx, dy = state
         theta, thrust = control
         step = DT * thrust
+        # A slice's thrust from the +x axis; in motion it is turned by the velocity's
+        # direction (its unit vector: divided by the speed below).
+        push_x, push_y = step * math.cos(theta), step * math.sin(theta)
         blocked = grid.blocked if grid is not None else None
-        width, height = (grid.width, grid.height) if grid is not None else (0, 0)
-        atan2, cos, sin = math.atan2, math.cos, math.sin  # locals: this loop is the hot path
+        width: int = grid.width if grid is not None else 0
+        height: int = grid.height if grid is not None else 0
         for _ in range(SLICES):
-            a = atan2(dy, dx) + theta
-            dx = dx + step * cos(a)
-            dy = dy + step * sin(a)
+            speed = math.sqrt(dx * dx + dy * dy)
+            if speed > 0.0:
+                dx, dy = (dx + (dx * push_x - dy * push_y) / speed,
+                          dy + (dy * push_x + dx * push_y) / speed)
+            else:  # at rest: SPEC's own formula, so a printed -0.0 turns theta by pi
+                a = math.atan2(dy, dx) + theta
+                dx, dy = dx + step * math.cos(a), dy + step * math.sin(a)
             x = x + DT * dx
             y = y + DT * dy
             if blocked is not None and (not (0.0 <= x < width and 0.0 <= y < height)

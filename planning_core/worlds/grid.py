@@ -48,8 +48,8 @@ class GridWorld:
 
     def __init__(self, problem: Problem):
         self.problem = problem
-        self.width = problem.width
-        self.height = problem.height
+        self.width: int = problem.width
+        self.height: int = problem.height
         blocked = problem.blocked
         self.blocked = list(blocked) if len(blocked) <= LIST_MAX_CELLS else blocked
 

@@ -15,9 +15,10 @@ _BLOCK = 64
 """Cells per block of :class:`FreeCells`: a lookup scans at most one block."""
 
 
-class FreeCells(Sequence):
+class FreeCells:
     """The row-major indices of the free cells (byte 0 of ``blocked``), in
-    increasing order: ``cells[k]`` is the k-th free cell.
+    increasing order: ``cells[k]`` is the k-th free cell (``len`` and indexing
+    only, a plain class so that mypyc compiles it).
 
     A list of them costs 36 bytes a cell and a pass over the map in Python;
     this keeps one count per block of ``_BLOCK`` cells, made by ``bytes.count``
@@ -60,7 +61,7 @@ class FreeCells(Sequence):
         raise AssertionError("block counts out of step with the map")
 
 
-def sample_free_point(rng: random.Random, free_cells: Sequence[int],
+def sample_free_point(rng: random.Random, free_cells: Sequence[int] | FreeCells,
                       width: int) -> tuple[float, float]:
     """Uniform over the free space: a uniform free cell, then uniform inside it.
 

@@ -46,7 +46,8 @@ class CellDistanceToGoal:
 
     def __init__(self, problem: Problem, unreachable: float = 1e12, stop: Stop = None):
         width, height, blocked = problem.width, problem.height, problem.blocked
-        self.width, self.height = width, height
+        self.width: int = width
+        self.height: int = height
         self.goal = problem.goal
         self.unreachable = unreachable
         gx, gy = problem.goal

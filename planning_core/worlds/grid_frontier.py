@@ -29,7 +29,8 @@ class FrontierCells:
     """
 
     def __init__(self, problem: Problem):
-        self.width, self.height = problem.width, problem.height
+        self.width: int = problem.width
+        self.height: int = problem.height
         self.blocked = problem.blocked
         self.covered = bytearray(len(problem.blocked))
         self.cells: list[int] = []

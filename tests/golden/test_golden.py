@@ -1,6 +1,7 @@
 """Planner output pinned byte for byte: each run's stdout hashes to what
 ``golden.json`` recorded before the core was reshaped (issue 13), and passes the
-validator's checks (with ``strict``)."""
+validator's checks (with ``strict``). Replayed interpreted and, when the compiled
+hot modules are built and fresh (``./make.sh``), compiled: the same hashes."""
 
 from __future__ import annotations
 
@@ -12,10 +13,12 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from golden_cases import PROBLEM_DIR, SEEDS, SLOW, argv, case_id, cases  # noqa: E402
+from golden_cases import (PROBLEM_DIR, SEEDS, SLOW, argv, case_id, cases,  # noqa: E402
+                          compiled_quick)
 
 from planning_core.problem_text import parse_problem  # noqa: E402
 from tests.conftest import run_planner  # noqa: E402
+from tests.test_compiled import run_planner_compiled  # noqa: E402
 from validator.checks import validate_output  # noqa: E402
 
 # golden_cases' vehicle names -> the validator's (the names the -grad/-left flags give).
@@ -26,22 +29,25 @@ GOLDEN = json.loads((Path(__file__).resolve().parent / "golden.json").read_text(
 
 def _params():
     # The unit run (-m "not slow") replays every planner x vehicle x problem with
-    # the first seed; the second seed and the runs in SLOW are marked slow.
-    for case in cases():
-        ident = case_id(*case)
-        marks = [pytest.mark.slow] if ident in SLOW or case[3] != SEEDS[0] else []
-        yield pytest.param(case, id=ident, marks=marks)
+    # the first seed interpreted, and one problem compiled; the rest is marked slow.
+    for mode in ("interpreted", "compiled"):
+        for case in cases():
+            ident = case_id(*case)
+            quick = (ident not in SLOW and case[3] == SEEDS[0]
+                     and (mode == "interpreted" or compiled_quick(case)))
+            marks = [] if quick else [pytest.mark.slow]
+            yield pytest.param(mode, case, id=f"{mode}/{ident}", marks=marks)
 
 
 def test_every_case_is_recorded():
     assert sorted(GOLDEN) == sorted(case_id(*case) for case in cases())
 
 
-@pytest.mark.parametrize("case", list(_params()))
-def test_output_matches_golden(case):
+@pytest.mark.parametrize("mode, case", list(_params()))
+def test_output_matches_golden(mode, case):
     vehicle, planner, problem, seed = case
-    done = run_planner(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text(),
-                       timeout=900)
+    run = run_planner if mode == "interpreted" else run_planner_compiled
+    done = run(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text(), timeout=900)
     expected = GOLDEN[case_id(*case)]
     assert done.returncode == expected["exit"], done.stderr.decode()
     assert len(done.stdout) == expected["bytes"]

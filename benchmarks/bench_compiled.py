@@ -1,0 +1,262 @@
+"""Planning time with the compiled hot modules against the same source interpreted,
+and both against OMPL with Python callbacks, measured in one run.
+
+    python -m benchmarks.bench_compiled [--seeds 3] [--repeats 1] [--time 30]
+                                        [--vehicles point spaceship left] [--problems PATTERN ...]
+                                        [--no-ompl]
+    python -m benchmarks.bench_compiled --kernels 5
+
+Problems: the quick preset's course problems for the point vehicle, and its
+problems for the two ships. Each case runs as whole processes in turn (./run.sh
+compiled, ./run.sh with RRT_INTERPRETED=1, OMPL's planner), the order
+alternating, and reads each run's own planning time from its -stats line. The
+OMPL reference is geometric RRT for the point vehicle and control RRT for the
+ships (issue 19's acceptance ratios); with g++ and Debian's libompl-dev, the same
+set-up in C++ too (``benchmarks/ompl_cpp/grid_ompl.cpp``, built on first use into
+``.build/``). Prints a Markdown table of medians over seeds and repeats; an
+unsolved run counts its whole time limit (noted).
+``--kernels`` times the two hot loops alone, in-process, per mode.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from benchmarks.generator import problem_id
+from benchmarks.presets import PRESETS, select_problems
+from planning_core.problem_text import parse_problem
+
+ROOT = Path(__file__).resolve().parent.parent
+OUR_PLANNERS = {"point": ("rrt", "rrtconnect"), "spaceship": ("rrt", "kpiece", "rgrrt"),
+                "left": ("rrt", "kpiece", "rgrrt")}
+VEHICLE_FLAGS = {"point": [], "spaceship": ["-grad"], "left": ["-grad", "-left"]}
+STATS = re.compile(r"stats: status=(\w+) .*planning_seconds=([0-9.]+)")
+MODES = ("compiled", "interpreted")
+OMPL_CPP_SOURCE = ROOT / "benchmarks" / "ompl_cpp" / "grid_ompl.cpp"
+OMPL_CPP_BINARY = ROOT / ".build" / "grid_ompl"
+OMPL_CPP_MODE = {"point": "point", "spaceship": "ship", "left": "left"}
+
+
+@dataclass(frozen=True)
+class Run:
+    seconds: float
+    """The planner's own planning time (its time limit when it did not solve)."""
+    solved: bool
+
+
+def problems_for(vehicle: str, patterns: list[str]) -> list[Path]:
+    """The quick preset's problems for ``vehicle`` (point: its course problems only)."""
+    plan = next(plan for plan in PRESETS["quick"].plans if plan.vehicle.value == vehicle)
+    chosen = select_problems(plan)
+    if vehicle == "point":
+        chosen = [path for path in chosen if problem_id(path).startswith("course-")]
+    return [path for path in chosen
+            if not patterns or any(fnmatch.fnmatchcase(problem_id(path), p) for p in patterns)]
+
+
+def ompl_cpp_binary() -> Path | None:
+    """The C++ OMPL program, compiled when missing or older than its source; None
+    without g++ or OMPL's headers (``apt-get install libompl-dev``)."""
+    if OMPL_CPP_BINARY.exists() and OMPL_CPP_BINARY.stat().st_mtime >= \
+            OMPL_CPP_SOURCE.stat().st_mtime:
+        return OMPL_CPP_BINARY
+    flags = subprocess.run(["pkg-config", "--cflags", "ompl"], capture_output=True, text=True)
+    if flags.returncode != 0 or shutil.which("g++") is None:
+        return None
+    OMPL_CPP_BINARY.parent.mkdir(exist_ok=True)
+    built = subprocess.run(["g++", "-O2", "-ffp-contract=off", *flags.stdout.split(),
+                            "-std=c++17", str(OMPL_CPP_SOURCE), "-o", str(OMPL_CPP_BINARY),
+                            "-lompl", "-lpthread"], capture_output=True, text=True)
+    if built.returncode != 0:
+        print(f"bench_compiled: C++ OMPL not built: {built.stderr.strip()[-300:]}",
+              file=sys.stderr)
+        return None
+    return OMPL_CPP_BINARY
+
+
+def flat_problem(problem: Path) -> bytes:
+    """The C++ program's input: W H, the cells as 0/1 (bottom row first), start, goal."""
+    parsed = parse_problem(problem.read_text())
+    cells = "".join("1" if cell else "0" for cell in parsed.blocked)
+    return (f"{parsed.width} {parsed.height}\n{cells}\n"
+            f"{parsed.start[0]!r} {parsed.start[1]!r} {parsed.goal[0]!r} {parsed.goal[1]!r}\n"
+            ).encode()
+
+
+def command(mode: str, vehicle: str, planner: str, seed: int, limit: float) -> tuple[list, dict]:
+    """argv and environment of one run: ours in ``mode``, or OMPL (mode "ompl" with
+    Python callbacks, "ompl-cpp" in C++)."""
+    args = [*VEHICLE_FLAGS[vehicle], "-planner", planner, "-seed", str(seed),
+            "-time", str(limit), "-stats"]
+    env = dict(os.environ)
+    env.pop("RRT_INTERPRETED", None)
+    if mode == "ompl-cpp":
+        return [str(OMPL_CPP_BINARY), OMPL_CPP_MODE[vehicle], str(limit), str(seed)], env
+    if mode == "ompl":
+        return [sys.executable, str(ROOT / "benchmarks" / "ompl_planner.py"), *args], env
+    if mode == "interpreted":
+        env["RRT_INTERPRETED"] = "1"
+    return [str(ROOT / "run.sh"), *args], env
+
+
+def run_once(argv: list, env: dict, problem: Path, limit: float, mode: str) -> Run:
+    stdin = flat_problem(problem) if mode == "ompl-cpp" else problem.read_bytes()
+    done = subprocess.run(argv, input=stdin, capture_output=True, env=env,
+                          timeout=limit * 3 + 30)
+    done.stderr = done.stderr.decode(errors="replace")
+    if mode == "compiled" and "rrt_cli build: compiled" not in done.stderr:
+        raise SystemExit(f"bench_compiled: the compiled modules are not in use: "
+                         f"{done.stderr.splitlines()[:1]} (run ./make.sh)")
+    found = STATS.search(done.stderr)
+    if found is None:
+        raise SystemExit(f"bench_compiled: no stats from {' '.join(map(str, argv))}: "
+                         f"{done.stderr.strip()[-300:]}")
+    solved = found.group(1) == "solved"
+    return Run(float(found.group(2)) if solved else limit, solved)
+
+
+def measure_case(vehicle: str, problem: Path, args) -> dict[tuple[str, str], list[Run]]:
+    """Runs per (planner, mode) for one problem; OMPL's under ("ompl", "ompl")."""
+    runs: dict[tuple[str, str], list[Run]] = {}
+    turn = 0
+    for seed in range(1, args.seeds + 1):
+        for _ in range(args.repeats):
+            jobs = [(planner, mode) for planner in args.planners.get(vehicle, ())
+                    for mode in (MODES if turn % 2 == 0 else MODES[::-1])]
+            if not args.no_ompl:
+                jobs.insert(turn % (len(jobs) + 1), ("ompl", "ompl"))
+                if args.ompl_cpp:
+                    jobs.insert((turn + 1) % (len(jobs) + 1), ("ompl-cpp", "ompl-cpp"))
+            turn += 1
+            for planner, mode in jobs:
+                ompl_planner = "rrt" if mode == "ompl" else planner
+                argv, env = command(mode, vehicle, ompl_planner, seed, args.time)
+                runs.setdefault((planner, mode), []).append(
+                    run_once(argv, env, problem, args.time, mode))
+    return runs
+
+
+def _ms(runs: list[Run]) -> str:
+    text = f"{statistics.median(run.seconds for run in runs) * 1000:.1f}"
+    unsolved = sum(not run.solved for run in runs)
+    return text + (f" ({unsolved} unsolved)" if unsolved else "")
+
+
+def _ratio(a: list[Run], b: list[Run]) -> str:
+    return f"{statistics.median(r.seconds for r in a) / statistics.median(r.seconds for r in b):.2f}"
+
+
+def table_rows(vehicle: str, problem: Path, runs) -> list[str]:
+    ompl, cpp = runs.get(("ompl", "ompl")), runs.get(("ompl-cpp", "ompl-cpp"))
+    rows = []
+    for planner in sorted({planner for planner, mode in runs if mode in MODES}):
+        compiled, interpreted = runs[(planner, "compiled")], runs[(planner, "interpreted")]
+        cells = [vehicle, problem_id(problem), planner, _ms(compiled), _ms(interpreted),
+                 _ratio(interpreted, compiled)]
+        cells += [_ms(ompl), _ratio(compiled, ompl), _ratio(interpreted, ompl)] if ompl else \
+            ["-", "-", "-"]
+        cells += [_ms(cpp), _ratio(compiled, cpp)] if cpp else ["-", "-"]
+        rows.append("| " + " | ".join(cells) + " |")
+    return rows
+
+
+def kernel_times(seed: int = 1, calls: int = 2000, repeats: int = 7) -> tuple[float, float]:
+    """In this process: median microseconds per slice of ``propagate_while`` over an
+    open map, and per quadtree ``nearest`` query among 5000 uniform points."""
+    import random
+    import time
+    from planning_core.nearest.quadtree import QuadtreeNearest
+    from planning_core.problem import Problem
+    from planning_core.systems.spaceship import SLICES, SYSTEM
+    from planning_core.worlds.grid import GridWorld
+    side = 100
+    world = GridWorld(Problem(side, side, bytes(side * side), (1.0, 1.0), (99.0, 99.0)))
+    rng = random.Random(seed)
+    starts = [(rng.uniform(40, 60), rng.uniform(40, 60), rng.uniform(-1, 1), rng.uniform(-1, 1))
+              for _ in range(calls)]
+    controls = [SYSTEM.sample_control(rng) for _ in range(calls)]
+    index = QuadtreeNearest(side, side)
+    for _ in range(5000):
+        index.add(rng.random() * side, rng.random() * side)
+    queries = [(rng.random() * side, rng.random() * side) for _ in range(calls)]
+
+    def per_call(work, count: int) -> float:
+        times = []
+        for _ in range(repeats):
+            began = time.perf_counter()
+            work()
+            times.append((time.perf_counter() - began) / count * 1e6)
+        return statistics.median(times)
+
+    propagate, nearest = SYSTEM.propagate_while, index.nearest
+    slice_us = per_call(lambda: [propagate(s, c, world) for s, c in zip(starts, controls)],
+                        calls * SLICES)
+    query_us = per_call(lambda: [nearest(x, y) for x, y in queries], calls)
+    return slice_us, query_us
+
+
+def kernels(rounds: int) -> None:
+    """Kernel times compiled and interpreted, each in its own process, alternating."""
+    times: dict[str, list[tuple[float, float]]] = {mode: [] for mode in MODES}
+    for turn in range(rounds):
+        for mode in MODES if turn % 2 == 0 else MODES[::-1]:
+            env = dict(os.environ, PYTHONPATH=str(ROOT), RRT_INTERPRETED=(
+                "1" if mode == "interpreted" else ""))
+            child = ("import sys; from planning_core.compiled import activate; "
+                     "state = activate(); from benchmarks.bench_compiled import kernel_times; "
+                     "print(state.split()[0].rstrip(':'), *kernel_times())")
+            out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True,
+                                 env=env, cwd=ROOT, check=True).stdout.split()
+            if out[0] != mode:
+                raise SystemExit(f"bench_compiled: asked for {mode}, ran {out[0]}")
+            times[mode].append((float(out[1]), float(out[2])))
+    print(f"# kernels: medians of {rounds} processes per mode (microseconds)")
+    print("| mode | propagate_while, per slice | quadtree nearest, 5000 points |")
+    print("|---|---:|---:|")
+    for mode, values in times.items():
+        print(f"| {mode} | {statistics.median(v[0] for v in values):.3f} "
+              f"| {statistics.median(v[1] for v in values):.3f} |")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, default=3)
+    parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--time", type=float, default=30.0, help="time limit of every run")
+    parser.add_argument("--vehicles", nargs="+", choices=sorted(OUR_PLANNERS),
+                        default=["point", "spaceship", "left"])
+    parser.add_argument("--problems", nargs="*", default=[], metavar="PATTERN")
+    parser.add_argument("--no-ompl", action="store_true", help="leave OMPL out")
+    parser.add_argument("--kernels", type=int, metavar="ROUNDS", default=0,
+                        help="only time the slice and the nearest query, ROUNDS processes "
+                             "per mode")
+    args = parser.parse_args(argv)
+    if args.kernels:
+        kernels(args.kernels)
+        return 0
+    args.planners = OUR_PLANNERS
+    args.ompl_cpp = not args.no_ompl and ompl_cpp_binary() is not None
+    print(f"# planning time (ms, medians of {args.seeds} seeds x {args.repeats}), "
+          f"compiled vs interpreted vs OMPL RRT (Python callbacks; C++ callbacks: "
+          f"{'yes' if args.ompl_cpp else 'not built'}), limit {args.time:g} s")
+    print("| vehicle | problem | planner | compiled | interpreted | interp / comp "
+          "| OMPL RRT | comp / OMPL | interp / OMPL | OMPL C++ | comp / C++ |")
+    print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for vehicle in args.vehicles:
+        for problem in problems_for(vehicle, args.problems):
+            for row in table_rows(vehicle, problem, measure_case(vehicle, problem, args)):
+                print(row, flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,97 @@
+"""The hot modules compiled ahead of time (mypyc), used only while they match their source.
+
+``tools/build_compiled.py`` compiles the modules of :data:`MODULES` from their
+annotated Python source into ``.build/compiled/`` (outside the source tree, so
+nothing ever picks up a compiled module by accident) and writes a manifest: the
+interpreter's extension suffix and the SHA-256 of every compiled source.
+:func:`activate` checks that manifest against the sources and only then puts the
+compiled folder first on the packages' ``__path__``; otherwise the same source
+runs interpreted, with the same bytes out, and :func:`activate` says why.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+MODULES = (
+    "planning_core.systems.spaceship",
+    "planning_core.systems.left_spaceship",
+    "planning_core.systems.point",
+    "planning_core.worlds.grid",
+    "planning_core.worlds.grid_distance",
+    "planning_core.worlds.grid_frontier",
+    "planning_core.worlds.grid_cells",
+    "planning_core.nearest.quadtree",
+)
+"""The compile list: hot modules whose source is annotated for mypyc."""
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BUILD_DIR = os.path.join(ROOT, ".build", "compiled")
+MANIFEST = "manifest.txt"
+DISABLE_VARIABLE = "RRT_INTERPRETED"
+"""Set to 1 in the environment to run interpreted although the build is fresh."""
+
+state = "interpreted: activate() was not called"
+"""What the last :func:`activate` found: ``compiled (...)`` or ``interpreted: why``."""
+
+
+def source_path(module: str) -> str:
+    """The repository-relative path of a module's source."""
+    return module.replace(".", "/") + ".py"
+
+
+def extension_suffix() -> str:
+    """The interpreter's ABI tag as its extension modules' file suffix."""
+    import _imp  # built in: importlib.machinery's own source of the suffixes
+    return _imp.extension_suffixes()[0]
+
+
+def source_digest(path: str) -> str:
+    try:
+        from _sha256 import sha256  # type: ignore[import-not-found]  # faster to import
+    except ImportError:
+        from hashlib import sha256
+    with open(path, "rb") as source:
+        return sha256(source.read()).hexdigest()
+
+
+def why_not_fresh(build_dir: str) -> str | None:
+    """None when the build in ``build_dir`` is fresh, else why it cannot be used."""
+    if os.environ.get(DISABLE_VARIABLE, "") not in ("", "0"):
+        return f"{DISABLE_VARIABLE} is set"
+    try:
+        with open(os.path.join(build_dir, MANIFEST), encoding="utf-8") as manifest:
+            lines = manifest.read().splitlines()
+    except OSError:
+        return "no compiled modules built (./make.sh builds them where a C compiler is)"
+    fields = dict(line.split(" ", 1) for line in lines if " " in line)
+    if fields.get("suffix") != extension_suffix():
+        return f"the compiled modules were built for another interpreter ({fields.get('suffix')})"
+    if {key for key in fields if key.endswith(".py")} != {source_path(m) for m in MODULES}:
+        return "the compile list changed since the compiled modules were built (./make.sh rebuilds)"
+    for module in MODULES:
+        path = source_path(module)
+        if fields.get(path) != source_digest(os.path.join(ROOT, path)):
+            return f"{path} changed since the compiled modules were built (./make.sh rebuilds)"
+    return None
+
+
+def activate(build_dir: str = BUILD_DIR) -> str:
+    """Use the compiled modules if their build is fresh; returns (and keeps in
+    :data:`state`) ``compiled (...)`` or ``interpreted: why``."""
+    global state
+    why = why_not_fresh(build_dir)
+    imported = [module for module in MODULES if module in sys.modules]
+    if why is None and imported:
+        why = f"{imported[0]} was imported before activate()"
+    if why is not None:
+        state = f"interpreted: {why}"
+        return state
+    sys.path.append(build_dir)  # mypyc's shared library of the group, a top-level module
+    for package in sorted({module.rpartition(".")[0] for module in MODULES}):
+        folder = os.path.join(build_dir, *package.split("."))
+        __import__(package)
+        sys.modules[package].__path__.insert(0, folder)
+    state = f"compiled ({len(MODULES)} modules from {build_dir})"
+    return state

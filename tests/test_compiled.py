@@ -1,0 +1,144 @@
+"""The compiled hot modules: used only while their manifest matches the sources,
+and then really used; otherwise the same source runs interpreted and says why.
+(Byte identity of the outputs both ways: tests/golden.)"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from planning_core import compiled
+
+ROOT = Path(__file__).resolve().parent.parent
+SIMPLE0 = ROOT / "benchmarks" / "problems" / "course" / "simple-0.sw"
+COMPILED_MAIN = """import sys
+from planning_core.compiled import activate
+build = activate()
+if not build.startswith("compiled"):
+    sys.exit("expected the compiled modules, got: " + build)
+from rrt_cli.cli import entry_point
+entry_point()
+"""
+
+
+def fresh_or_skip() -> None:
+    why = compiled.why_not_fresh(compiled.BUILD_DIR)
+    if why is not None:
+        pytest.skip(f"compiled modules not in use: {why}")
+
+
+def _env() -> dict:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env.pop(compiled.DISABLE_VARIABLE, None)
+    return env
+
+
+def run_planner_compiled(args: list[str], stdin: str,
+                         timeout: float = 120) -> subprocess.CompletedProcess:
+    """tests.conftest.run_planner with the compiled modules (skips when none are fresh)."""
+    fresh_or_skip()
+    return subprocess.run([sys.executable, "-c", COMPILED_MAIN, *args], input=stdin.encode(),
+                          capture_output=True, timeout=timeout, cwd=ROOT, env=_env())
+
+
+def fake_build(tmp_path: Path, change: dict[str, str] | None = None) -> Path:
+    """A build folder whose manifest matches the sources, with ``change``'s lines
+    replaced (no compiled files: only the manifest is read before use)."""
+    fields = {"suffix": compiled.extension_suffix()}
+    fields.update({compiled.source_path(module):
+                   compiled.source_digest(str(ROOT / compiled.source_path(module)))
+                   for module in compiled.MODULES})
+    fields.update(change or {})
+    (tmp_path / compiled.MANIFEST).write_text(
+        "".join(f"{key} {value}\n" for key, value in fields.items()))
+    return tmp_path
+
+
+def test_a_matching_manifest_is_fresh(tmp_path, monkeypatch):
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    assert compiled.why_not_fresh(str(fake_build(tmp_path))) is None
+
+
+@pytest.mark.parametrize("module", [compiled.MODULES[0], compiled.MODULES[-1]])
+def test_an_edited_source_is_never_used_compiled(tmp_path, monkeypatch, module):
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    path = compiled.source_path(module)
+    build = fake_build(tmp_path, {path: "0" * 64})
+    assert compiled.activate(str(build)) == (
+        f"interpreted: {path} changed since the compiled modules were built (./make.sh rebuilds)")
+    assert compiled.state.startswith("interpreted")
+
+
+def test_a_build_of_another_compile_list_is_not_used(tmp_path, monkeypatch):
+    """A module dropped from the list keeps its old binary in the build: never used."""
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    build = fake_build(tmp_path, {"planning_core/worlds/gone.py": "0" * 64})
+    assert "the compile list changed" in compiled.why_not_fresh(str(build))
+
+
+def test_other_interpreter_missing_build_and_opt_out_run_interpreted(tmp_path, monkeypatch):
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    (tmp_path / "other").mkdir()
+    other = fake_build(tmp_path / "other", {"suffix": ".cpython-39-x86_64-linux-gnu.so"})
+    assert "another interpreter" in compiled.why_not_fresh(str(other))
+    assert "no compiled modules built" in compiled.why_not_fresh(str(tmp_path / "none"))
+    monkeypatch.setenv(compiled.DISABLE_VARIABLE, "1")
+    assert compiled.why_not_fresh(str(fake_build(tmp_path))) == "RRT_INTERPRETED is set"
+
+
+def test_activate_refuses_after_the_interpreted_module_is_imported(tmp_path, monkeypatch):
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    import planning_core.systems.spaceship  # noqa: F401  (interpreted, in this process)
+    path_before = list(sys.path)
+    assert "was imported before activate()" in compiled.activate(str(fake_build(tmp_path)))
+    assert sys.path == path_before
+
+
+def test_a_fresh_build_is_what_runs():
+    fresh_or_skip()
+    probe = ("from planning_core.compiled import activate, MODULES\nimport importlib\n"
+             "activate()\nprint(*(importlib.import_module(m).__file__ for m in MODULES))")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, env=_env(), timeout=60)
+    files = done.stdout.split()
+    assert len(files) == len(compiled.MODULES), done.stderr
+    assert all(file.startswith(compiled.BUILD_DIR) and file.endswith(compiled.extension_suffix())
+               for file in files), files
+
+
+@pytest.mark.parametrize("disable", ["", "1"])
+def test_run_sh_stats_says_which_ran(disable):
+    fresh_or_skip()
+    env = dict(os.environ, RRT_INTERPRETED=disable)
+    with open(SIMPLE0, "rb") as problem:
+        done = subprocess.run([str(ROOT / "run.sh"), "-seed", "1", "-stats"],
+                              stdin=problem, capture_output=True, text=True, env=env,
+                              timeout=120)
+    assert done.returncode == 0, done.stderr
+    expected = "rrt_cli build: interpreted: RRT_INTERPRETED is set" if disable else (
+        f"rrt_cli build: compiled ({len(compiled.MODULES)} modules from {compiled.BUILD_DIR})")
+    assert expected in done.stderr.splitlines()
+
+
+def test_no_compiled_module_inside_the_source_tree():
+    """Python prefers an extension module to the .py beside it: none may be there."""
+    suffixes = (".so", ".pyd")
+    strays = [path for package in ("planning_core", "rrt_cli", "validator")
+              for path in (ROOT / package).rglob("*") if path.suffix in suffixes]
+    assert strays == []
+
+
+def test_the_build_used_the_pinned_flags():
+    """Every C compile of the build in use had -ffp-contract=off and no flag that
+    lets the compiler change float results."""
+    fresh_or_skip()
+    log = (Path(compiled.BUILD_DIR) / "build.log").read_text()
+    compiles = [line.split() for line in log.splitlines() if " -c " in line]
+    assert compiles
+    for flags in compiles:
+        assert "-ffp-contract=off" in flags
+        assert not {"-march=native", "-ffast-math", "-Ofast"} & set(flags)
