@@ -448,13 +448,16 @@ class _Validation:
             results.append(self.check_bounds())
             results.append(self.check_start())
             results.append(self.check_goal())
-            if self.system.kinodynamic:
-                results.extend(self.check_kinodynamic_motion())
-            else:
-                results.append(self.check_point_collisions())
+            results.extend(self.motion_checks())
         except _Failed as failure:
             results.append(failure.result)
         return results
+
+    def motion_checks(self) -> tuple[CheckResult, ...]:
+        """The checks after the goal: collisions (and dynamics, kinodynamic systems)."""
+        if self.system.kinodynamic:
+            return self.check_kinodynamic_motion()
+        return (self.check_point_collisions(),)
 
 
 KINOPLAN_TOLERANCE = 1e-6
@@ -564,19 +567,6 @@ class _KinoplanValidation(_Validation):
             state = sliced
         return slices[-1], length
 
-    def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
-        results: list[CheckResult] = []
-        try:
-            results.append(self.check_parse(text, output_cap))
-            results.append(self.check_nonempty())
-            results.append(self.check_bounds())
-            results.append(self.check_start())
-            results.append(self.check_goal())
-            results.extend(self.check_kinodynamic_motion())
-        except _Failed as failure:
-            results.append(failure.result)
-        return results
-
 
 class _GeometricValidation(_KinoplanValidation):
     """SPEC 5.5's checks for a geometric ``kinoplan 1`` answer (arm2, rigid2): a
@@ -661,18 +651,8 @@ class _GeometricValidation(_KinoplanValidation):
         return self.passed(6, f"{self.plan.trajectory_count - 1} segments, {count} samples at "
                               f"most {self.system.check:g} apart{density}")
 
-    def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
-        results: list[CheckResult] = []
-        try:
-            results.append(self.check_parse(text, output_cap))
-            results.append(self.check_nonempty())
-            results.append(self.check_bounds())
-            results.append(self.check_start())
-            results.append(self.check_goal())
-            results.append(self.check_geometric_motion())
-        except _Failed as failure:
-            results.append(failure.result)
-        return results
+    def motion_checks(self) -> tuple[CheckResult, ...]:
+        return (self.check_geometric_motion(),)
 
 
 def validate_output(problem: Problem, vehicle: Vehicle | str, output_text: str,
