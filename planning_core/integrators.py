@@ -159,6 +159,13 @@ def slice_count(k) -> int:
     raise ValueError(f"K = {k!r} is not a whole number of slices")
 
 
+def _check_scheme(scheme: str, dt: float) -> None:
+    if scheme not in SCHEMES:
+        raise ValueError(f"integrate: unknown scheme {scheme!r} (euler | rk4)")
+    if not (math.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"integrate: DT must be a finite number > 0, got {dt!r}")
+
+
 def compile_propagator(dynamics: Dynamics, scheme: str, dt: float) -> Callable:
     """``propagate(state, control, valid=None, out=None) -> state | None``.
 
@@ -167,10 +174,7 @@ def compile_propagator(dynamics: Dynamics, scheme: str, dt: float) -> Callable:
     rejects) and appended to ``out``; the last one is returned. The inputs are
     not modified.
     """
-    if scheme not in SCHEMES:
-        raise ValueError(f"integrate: unknown scheme {scheme!r} (euler | rk4)")
-    if not (math.isfinite(dt) and dt > 0.0):
-        raise ValueError(f"integrate: DT must be a finite number > 0, got {dt!r}")
+    _check_scheme(scheme, dt)
     state = ", ".join(dynamics.state_names)
     lines = ["def propagate(state, control, valid=None, out=None):",
              *_bind(dynamics, "    "),
@@ -190,3 +194,32 @@ def compile_propagator(dynamics: Dynamics, scheme: str, dt: float) -> Callable:
     namespace = _namespace(dynamics)
     namespace.update(_DT=dt, _HALF=dt / 2.0, _SIXTH=dt / 6.0, _slice_count=slice_count)
     return _run("\n".join(lines), namespace, "propagate")
+
+
+def compile_advance(dynamics: Dynamics, scheme: str, dt: float, condition: str,
+                    names: dict) -> Callable:
+    """``advance(state, control, kmax) -> (state, k)``: the held ``control`` (its
+    values; a K after them is ignored) for up to ``kmax`` slices, stopping before
+    the first slice whose state fails ``condition`` (an expression over the state
+    names and ``names``). Returns the last state that passed (``state`` itself
+    when the first slice fails) and how many slices did: the same floats as
+    :func:`compile_propagator`'s for those slices, the test fused into the loop
+    (the family planners' hot path)."""
+    _check_scheme(scheme, dt)
+    state = ", ".join(dynamics.state_names)
+    lines = ["def advance(state, control, kmax):",
+             *_bind(dynamics, "    "),
+             f"    _q = ({state},)",
+             "    for _k in range(kmax):",
+             *_slice_lines(dynamics, scheme, "        "),
+             f"        if not ({condition}):",
+             "            return _q, _k",
+             f"        _q = ({state},)",
+             "    return _q, kmax"]
+    namespace = _namespace(dynamics)
+    namespace.update(_DT=dt, _HALF=dt / 2.0, _SIXTH=dt / 6.0)
+    for name, value in names.items():
+        if not name.startswith("_"):
+            raise ValueError(f"advance: {name!r}: names of the test start with '_'")
+        namespace[name] = value
+    return _run("\n".join(lines), namespace, "advance")

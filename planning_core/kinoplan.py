@@ -16,7 +16,6 @@ from planning_core.goal import PLANNER_MARGIN
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
 from planning_core.worlds.continuous import OUTSIDE_BOX, ContinuousWorld
-from planning_core.worlds.shapes import place
 
 State = tuple[float, ...]
 
@@ -137,18 +136,26 @@ def state_validator(system: FamilySystem,
     the arm's two links) inside the closed world box and off every closed
     obstacle. Without a world, or for the pendulum, the bounds alone. Bind it
     once: propagate_while calls it after every slice."""
-    in_bounds = system.space.satisfies_bounds
+    in_bounds = system.in_bounds
     if world is None or not system.occupies:
         return in_bounds
     if system.occupies == "links":
         return _links_validator(system, world, in_bounds)
-    if system.body is None:
-        raise ValueError(f"{system.name} has no body (a problem must give one)")
-    body, polygon_free = system.body, world.polygon_free
+    free = body_test(system, world)
 
     def valid(state: Sequence[float]) -> bool:
-        return in_bounds(state) and polygon_free(place(body, state[0], state[1], state[2]))
+        return in_bounds(state) and free(state[0], state[1], state[2])
     return valid
+
+
+def body_test(system: FamilySystem, world: Optional[ContinuousWorld]):
+    """``free(x, y, theta)`` for a system whose body is placed at its first three
+    state variables (``world.body_test``); None when it puts no body in a world."""
+    if world is None or system.occupies != "body":
+        return None
+    if system.body is None:
+        raise ValueError(f"{system.name} has no body (a problem must give one)")
+    return world.body_test(system.body)
 
 
 def _links_validator(system, world: ContinuousWorld, in_bounds):

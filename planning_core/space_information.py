@@ -25,6 +25,10 @@ from planning_core.worlds.grid import GridWorld, SegmentHit
 class SpaceInformation:
     """A system moving in a world from a start toward a goal region."""
 
+    duration = None
+    """A kinoplan system's (KMIN, KMAX): planners choose how long a control is held.
+    None here: a grid vehicle holds each control for one whole step."""
+
     def __init__(self, system, world: GridWorld, start: tuple[float, ...], goal: GoalRegion):
         self.system = system
         self.world = world
@@ -130,20 +134,50 @@ class KinoplanSpaceInformation:
     metric (an exact kd-tree)."""
 
     def __init__(self, problem):
-        from planning_core.kinoplan import state_validator
+        from planning_core.kinoplan import body_test, state_validator
         self.problem = problem
-        self.system = problem.system
+        self.system = system = problem.system
         self.world = problem.world
         self.start = problem.start
         self.goal = problem.goal
-        self.space = problem.system.space
-        self.is_valid = state_validator(self.system, self.world)
+        self.space = system.space
+        self.is_valid = state_validator(system, self.world)
         self.closeness = self.space.distance
         self._sample = self.space.sample_uniform
+        self.duration = (system.kmin, system.kmax) if system.kinodynamic else None
+        if system.kinodynamic:
+            # The validity test fused into the integration loop (the hot path).
+            self.advance = system.advancer(body_test(system, self.world))
+            self.propagate_valid = self._propagate_valid_by(self.advance)
 
     def propagate_valid(self, state, control):
-        """Where ``control`` leads from ``state`` if every slice is valid; else None."""
+        """Where ``control`` leads from ``state`` if every slice is valid; else None.
+        (Each kinodynamic instance shadows this with the fused version.)"""
         return self.system.propagate_while(state, control, self.is_valid)
+
+    @staticmethod
+    def _propagate_valid_by(advance):
+        def propagate_valid(state, control):
+            k = control[-1]
+            end, done = advance(state, control, k)
+            return end if done == k else None
+        return propagate_valid
+
+    def random_motion(self, state, rng: random.Random):
+        """``(end, control)``: random held values for a random K in [KMIN, KMAX]
+        (``rng``: the values, then K), cut at the first invalid slice, K then the
+        slices done (OMPL's propagateWhileValid); None when fewer than KMIN were valid."""
+        system = self.system
+        values = system.sample_values(rng)
+        kmin, kmax = self.duration
+        end, k = self.advance(state, values, rng.randint(kmin, kmax))
+        return (end, (*values, k)) if k >= kmin else None
+
+    def advance(self, state, control, kmax: int):
+        """``(state, k)``: ``control``'s held values applied for up to ``kmax``
+        slices, stopped before the first invalid one; the last valid state and
+        how many slices led to it (each kinodynamic instance shadows this)."""
+        raise ValueError(f"{self.system.name} is not kinodynamic")
 
     def sample_target(self, rng: random.Random) -> tuple[float, ...]:
         """A uniform state of the system's space (valid or not)."""
@@ -160,9 +194,10 @@ class KinoplanSpaceInformation:
         return self.goal.complete(self._sample(rng))
 
     def new_nearest(self):
-        """An empty nearest-node index over full states (kd-tree, the metric)."""
+        """An empty nearest-node index over full states (kd-tree, the metric; leaves
+        of 16 answered the family's queries fastest, docs/planners-family.md)."""
         from planning_core.nearest.kdtree import KDTree
-        return KDTree(self.space)
+        return KDTree(self.space, leaf_capacity=16)
 
     def start_in_goal_controls(self) -> Optional[tuple]:
         """For a start already in the goal region: one held control, each value 0
@@ -188,5 +223,9 @@ class KinoplanSpaceInformation:
 
 
 def kinoplan_space_information(problem) -> KinoplanSpaceInformation:
-    """The SpaceInformation of a :class:`~planning_core.kinoplan.KinoplanProblem`."""
+    """The SpaceInformation of a :class:`~planning_core.kinoplan.KinoplanProblem`
+    (a geometric system's: :mod:`planning_core.geometric_space_information`)."""
+    if not problem.system.kinodynamic:
+        from planning_core.geometric_space_information import GeometricSpaceInformation
+        return GeometricSpaceInformation(problem)
     return KinoplanSpaceInformation(problem)

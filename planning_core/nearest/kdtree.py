@@ -142,10 +142,36 @@ class KDTree:
         return q, self.space.wrap(q), angle_slack(extent)
 
     def nearest(self, query: Sequence[float]) -> int:
-        """Index of the nearest point; ties go to the earliest inserted."""
+        """Index of the nearest point; ties go to the earliest inserted.
+
+        :meth:`k_nearest` for k = 1 (the same visits and pruning) with the best
+        kept in two locals instead of a heap: a planner asks this every iteration."""
         if self._root is None:
             raise ValueError("nearest() on an empty structure")
-        return self.k_nearest(query, 1)[0]
+        q, key, slack = self._prepare(query)
+        dist, bound, points = self._distance, self._bound, self._points
+        best, best_i = math.inf, -1
+        stack = [(-1.0, self._root)]
+        pop, push = stack.pop, stack.append
+        while stack:
+            b, node = pop()
+            if b > best:
+                continue
+            bucket = node[6]
+            if bucket is not None:
+                if b < 0.0 and bound(key, node[0], node[1], slack) > best:
+                    continue
+                for i in bucket:
+                    d = dist(q, points[i])
+                    if d < best or (d == best and i < best_i):
+                        best, best_i = d, i
+                continue
+            near, far = (node[4], node[5]) if key[node[2]] < node[3] else (node[5], node[4])
+            b = bound(key, far[0], far[1], slack)
+            if b <= best:
+                push((b, far))
+            push((-1.0, near))
+        return best_i
 
     def k_nearest(self, query: Sequence[float], k: int) -> list[int]:
         """Indices of the ``k`` nearest points, nearest first (ties: smaller index

@@ -13,13 +13,14 @@ tests that against a world, and ``propagate_while`` takes the test as a function
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar, Optional
 
-from planning_core.integrators import Dynamics, compile_propagator, slice_count
+from planning_core.integrators import Dynamics, compile_advance, compile_propagator, slice_count
 from planning_core.spaces import StateSpace, Variable
 from planning_core.worlds.shapes import ConvexPolygon, Rect, body_polygon, place
 
@@ -102,6 +103,7 @@ class FamilySystem:
             self._set("body", body_polygon(*d.body))
         self._check_params()
         self._set("space", StateSpace.from_metric(self.variables(), self.metric))
+        self._set("in_bounds", self._compile_in_bounds())
 
     def _set(self, name: str, value: Any) -> None:
         object.__setattr__(self, name, value)
@@ -171,6 +173,34 @@ class FamilySystem:
                 return f"{v.name} = {value!r} is outside its bound [{v.low:g}, {v.high:g}]"
         return None
 
+    def bounds_condition(self) -> str:
+        """Source of :meth:`in_bounds`'s test over the state names: every value
+        finite (``v - v == 0.0``), every non-angle within its closed bounds."""
+        terms = []
+        for v in self.space.variables:
+            finite_bounds = not v.angle and math.isfinite(v.low) and math.isfinite(v.high)
+            if not v.angle and v.low > -math.inf:
+                terms.append(f"{v.low!r} <= {v.name}")
+            if not v.angle and v.high < math.inf:
+                terms.append(f"{v.name} <= {v.high!r}")
+            if not finite_bounds:
+                terms.append(f"{v.name} - {v.name} == 0.0")
+        return " and ".join(terms) or "True"
+
+    def in_bounds(self, state: Sequence[float]) -> bool:
+        """``space.satisfies_bounds``; each instance shadows this with its compiled
+        :meth:`bounds_condition` (the state validator's first test, per slice)."""
+        return self.space.satisfies_bounds(state)
+
+    def _compile_in_bounds(self) -> Callable[[Sequence[float]], bool]:
+        source = (f"def in_bounds(state):\n"
+                  f"    if len(state) != {len(self.state_names)}:\n        return False\n"
+                  f"    {', '.join(self.state_names)}, = state\n"
+                  f"    return {self.bounds_condition()}")
+        namespace: dict = {"__builtins__": {"len": len}}
+        exec(source, namespace)  # noqa: S102 - source built from names and floats
+        return namespace["in_bounds"]
+
     def footprint(self, state: Sequence[float]) -> ConvexPolygon:
         """The body placed at the state's (x, y, theta)."""
         if self.body is None:
@@ -203,6 +233,8 @@ class KinodynamicFamily(FamilySystem):
     kinodynamic: ClassVar[bool] = True
     control_names: ClassVar[tuple[str, ...]] = ()
     rates: ClassVar[tuple[str, ...]] = ()
+    # The state variables KPIECE1's grid projects on (docs/planners-family.md).
+    projection_names: ClassVar[tuple[str, ...]] = ("x", "y")
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -219,6 +251,7 @@ class KinodynamicFamily(FamilySystem):
         dynamics = Dynamics(self.state_names, held, self.rates,
                             tuple(n in self.angle_names for n in self.state_names),
                             tuple((p, getattr(self, p)) for p in self.params))
+        self._set("_dynamics", dynamics)
         self._set("_propagate", compile_propagator(dynamics, self.scheme, float(self.dt)))
 
     def _check_controls(self) -> None:
@@ -247,12 +280,14 @@ class KinodynamicFamily(FamilySystem):
         return dict(controls=tuple(merged[n] for n in cls.control_names[:-1]),
                     scheme=scheme, dt=dt, kmin=kmin, kmax=kmax)
 
+    def sample_values(self, rng: random.Random) -> tuple:
+        """The held values, each uniform in [low, high) (one ``rng.random()`` each,
+        in control order)."""
+        return tuple([lo + (hi - lo) * rng.random() for lo, hi in self.controls])
+
     def sample_control(self, rng: random.Random) -> tuple:
-        """Each held value uniform in [low, high) (one ``rng.random()`` each, in
-        control order), then K by ``rng.randint(kmin, kmax)``."""
-        values = [lo + (hi - lo) * rng.random() for lo, hi in self.controls]
-        values.append(rng.randint(self.kmin, self.kmax))
-        return tuple(values)
+        """:meth:`sample_values`, then K by ``rng.randint(kmin, kmax)``."""
+        return (*self.sample_values(rng), rng.randint(self.kmin, self.kmax))
 
     def control_violation(self, control: Sequence[float]) -> Optional[str]:
         """Why a control (held values, then K) is out of bounds or duration, or None."""
@@ -277,6 +312,36 @@ class KinodynamicFamily(FamilySystem):
         """The state after K slices; None at the first slice ``state_valid``
         rejects (``state`` itself is not tested). ``slices_out`` gets each slice."""
         return self._propagate(state, control, state_valid, slices_out)
+
+    def advancer(self, body_free: Optional[Callable[[float, float, float], bool]] = None):
+        """``advance(state, control, kmax) -> (state, k)`` (integrators.compile_advance)
+        with the state validator's test fused in: the bounds, then
+        ``body_free(x, y, theta)`` when given."""
+        condition = self.bounds_condition()
+        if body_free is not None:
+            condition = f"({condition}) and _free({', '.join(self.state_names[:3])})"
+        return compile_advance(self._dynamics, self.scheme, float(self.dt), condition,
+                               {"_free": body_free})
+
+    def reachable_controls(self, levels: int, k: int) -> list[tuple]:
+        """RG-RRT's fixed reachable set: every combination of ``levels`` evenly
+        spaced values per held control (both bounds included; 1: the middle), each
+        held for ``k`` slices."""
+        values = [[lo + (hi - lo) * (j / (levels - 1) if levels > 1 else 0.5)
+                   for j in range(levels)] for lo, hi in self.controls]
+        return [(*combination, k) for combination in itertools.product(*values)]
+
+    def cell_projection(self, cells: int) -> Callable[[Sequence[float]], tuple[int, ...]]:
+        """State -> integer cell of :attr:`projection_names`, each variable's
+        bounds cut into ``cells`` equal cells (KPIECE1's grid)."""
+        space, floor = self.space, math.floor
+        axes = []
+        for name in self.projection_names:
+            v = space.variables[space.index(name)]
+            if not (math.isfinite(v.low) and math.isfinite(v.high) and v.low < v.high):
+                raise ValueError(f"{self.name}: projection on {name} needs finite bounds")
+            axes.append((space.index(name), v.low, cells / (v.high - v.low)))
+        return lambda state: tuple([floor((state[i] - low) * scale) for i, low, scale in axes])
 
     def propagate(self, state: Sequence[float], control: Sequence[float]) -> State:
         """The state after K slices (no validity test)."""

@@ -35,6 +35,7 @@ class Pendulum(KinodynamicFamily):
     rates: ClassVar[tuple[str, ...]] = ("omega", "-g * cos(theta) + tau")
     params: ClassVar[tuple[str, ...]] = ("g",)
     position_indices: ClassVar[tuple[int, int]] = (0, 1)
+    projection_names: ClassVar[tuple[str, ...]] = ("theta", "omega")
     needs_world: ClassVar[bool] = False
     occupies: ClassVar[str] = ""
     DEFAULTS: ClassVar[Defaults] = DEFAULTS

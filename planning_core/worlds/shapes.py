@@ -215,6 +215,13 @@ def place(polygon: ConvexPolygon, x: float, y: float, theta: float) -> ConvexPol
     exactly ``x in [-0.5, 0.5]``. This moves no vertex by more than
     ``SNAP`` times its distance from the origin.
     """
+    xs, ys = placed_coordinates(polygon.points, x, y, theta)
+    return ConvexPolygon._trusted(tuple(zip(xs, ys)), (min(xs), min(ys), max(xs), max(ys)))
+
+
+def placed_coordinates(points: Sequence[Point], x: float, y: float,
+                       theta: float) -> tuple[list[float], list[float]]:
+    """The x and the y coordinates of ``points`` placed as :func:`place` does."""
     try:
         c, s = math.cos(theta), math.sin(theta)
     except ValueError:  # an infinite angle: every vertex NaN, which no world accepts
@@ -223,10 +230,8 @@ def place(polygon: ConvexPolygon, x: float, y: float, theta: float) -> ConvexPol
         c = 0.0
     if abs(s) < SNAP:
         s = 0.0
-    body = polygon.points
-    xs = [x + c * px - s * py for px, py in body]
-    ys = [y + s * px + c * py for px, py in body]
-    return ConvexPolygon._trusted(tuple(zip(xs, ys)), (min(xs), min(ys), max(xs), max(ys)))
+    return ([x + c * px - s * py for px, py in points],
+            [y + s * px + c * py for px, py in points])
 
 
 # --- Primitive predicates -----------------------------------------------------------
@@ -421,3 +426,32 @@ def point_in(shape: Shape, x: float, y: float) -> bool:
     if isinstance(shape, Rect):
         return shape.x0 <= x <= shape.x1 and shape.y0 <= y <= shape.y1
     return segments_intersect(shape, Segment(x, y, x, y))
+
+
+def point_distance(shape: Shape, x: float, y: float) -> float:
+    """Euclidean distance from the point to the closed ``shape`` (0 inside or on it).
+
+    Rounded as floats are: callers that build a certainty on it keep a margin."""
+    if isinstance(shape, Disc):
+        return max(0.0, math.hypot(x - shape.cx, y - shape.cy) - shape.r)
+    if isinstance(shape, Rect):
+        return math.hypot(max(shape.x0 - x, 0.0, x - shape.x1),
+                          max(shape.y0 - y, 0.0, y - shape.y1))
+    if isinstance(shape, Segment):
+        return _segment_distance(shape.x0, shape.y0, shape.x1, shape.y1, x, y)
+    if point_in(shape, x, y):
+        return 0.0
+    pts = shape.points
+    best = math.inf
+    (ax, ay) = pts[-1]
+    for bx, by in pts:
+        best = min(best, _segment_distance(ax, ay, bx, by, x, y))
+        ax, ay = bx, by
+    return best
+
+
+def _segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
+    ex, ey, wx, wy = bx - ax, by - ay, x - ax, y - ay
+    l2 = ex * ex + ey * ey
+    t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
+    return math.hypot(wx - t * ex, wy - t * ey)

@@ -26,8 +26,8 @@ class PlannerEntry:
     module: str
     kinds: frozenset
     summary: str
-    kinoplan: bool = False
-    """It plans for the kinodynamic systems of ``kinoplan 1`` problems (SPEC 5) too."""
+    kinoplan: frozenset = frozenset()
+    """The kinds of ``kinoplan 1`` system (SPEC 5) it plans for."""
 
     def load(self):
         return importlib.import_module(self.module)
@@ -36,21 +36,29 @@ class PlannerEntry:
         return system_kind(system) in self.kinds
 
     def plans_for_kinoplan(self, system) -> bool:
-        """A kinoplan system: only the kinodynamic ones, by the planners that say so."""
-        return self.kinoplan and system.kinodynamic and self.plans_for(system)
+        """A kinoplan system of a kind the planner says it plans for."""
+        return system_kind(system) in self.kinoplan
 
 
 PLANNERS: dict[str, PlannerEntry] = {
+    "blossom": PlannerEntry("rrt_cli.planners.blossom", frozenset(),
+                            "blossom RRT: b random controls held while valid (seed 004)",
+                            kinoplan=KINODYNAMIC),
     "kpiece": PlannerEntry("rrt_cli.planners.kpiece", KINODYNAMIC,
-                           "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)"),
+                           "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)",
+                           kinoplan=KINODYNAMIC),
     "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", KINODYNAMIC,
-                          "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)"),
+                          "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)",
+                          kinoplan=KINODYNAMIC),
     "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner",
-                        kinoplan=True),
+                        kinoplan=ANY),
     "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", GEOMETRIC,
-                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)"),
+                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)",
+                               kinoplan=GEOMETRIC),
     "prm": PlannerEntry("rrt_cli.planners.prm", GEOMETRIC,
-                        "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
+                        "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)",
+                        kinoplan=GEOMETRIC),
     "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,
-                            "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
+                            "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)",
+                            kinoplan=GEOMETRIC),
 }

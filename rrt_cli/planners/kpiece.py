@@ -43,6 +43,14 @@ wall nearest it. OMPL leaves this to the goal's own distance function, which is
 ours to define; ``goal_distance="euclidean"`` restores the straight line. The
 goal test itself is always the straight-line 0.1 of SPEC 2.
 
+Kinoplan systems (SPEC 5) use the same search with three differences: the grid
+projects on the system's ``projection_names`` (``cells_per_axis`` cells over each
+one's bounds; the pendulum (theta, omega), the cars (x, y)); a motion is one
+node, a random control held for a random K in [KMIN, KMAX] and cut at the first
+invalid slice, kept when at least KMIN slices were valid (``si.random_motion``,
+as OMPL's propagateWhileValid); and the goal distance is the goal region's
+metric (there are no cells to walk). docs/planners-family.md has the measurements.
+
 The design follows OMPL's ``control::KPIECE1`` (read for ideas, not copied).
 """
 
@@ -99,6 +107,9 @@ class KPIECEParams:
     goal_distance: str = "cells"
     """"cells": distance to the goal along free space, where the world offers it
     (cell scores, close motions, goal steering); "euclidean": the straight line (the paper's)."""
+    cells_per_axis: int = 64
+    """Kinoplan systems: each projected variable's bounds cut into this many cells
+    (the system's ``projection_names``, docs/planners-family.md)."""
 
     def __post_init__(self):
         if self.goal_distance not in ("euclidean", "cells"):
@@ -108,6 +119,8 @@ class KPIECEParams:
                 raise ValueError(f"{name} must be in (0, 1]")
         if self.goal_controls < 1:
             raise ValueError("goal_controls must be at least 1")
+        if self.cells_per_axis < 1:
+            raise ValueError("cells_per_axis must be at least 1")
         if not 1 <= self.min_steps <= self.max_steps:
             raise ValueError("need 1 <= min_steps <= max_steps")
         for name in ("cell_size", "velocity_cell_size"):
@@ -255,9 +268,7 @@ class _Search:
     def __init__(self, si: SpaceInformation, rng: random.Random, params: KPIECEParams,
                  stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
-        world = si.world
-        cell_size = params.cell_size or derived_cell_size(world.width, world.height)
-        self.project = _projection(si.system, 1.0 / cell_size, params.velocity_cell_size)
+        self.project = _make_projection(si, params)
         self.grid = _CellGrid(len(self.project(si.start)))
         self.close = _CloseSamples(params.close_samples)
         self.tree = MotionTree(si.start)
@@ -301,6 +312,9 @@ class _Search:
         if steering:
             control = _steer_to_goal(si, state, self.goal_distance, params.goal_controls, rng)
             wanted = 1 if control is not None else 0
+        elif si.duration is not None:
+            motion = si.random_motion(state, rng)  # one node, K slices (kinoplan)
+            return (None, []) if motion is None else (motion[1], [motion[0]])
         else:
             control = si.sample_control(rng)
             wanted = rng.randint(params.min_steps, params.max_steps)
@@ -370,6 +384,16 @@ class _Search:
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: KPIECEParams = KPIECEParams()) -> PlanResult:
     return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "KPIECE1")
+
+
+def _make_projection(si, params: KPIECEParams):
+    """The grid's projection: a kinoplan system's own (``cell_projection``); on a
+    grid map, the position (and the velocity) in cells of ``cell_size``."""
+    if si.duration is not None:
+        return si.system.cell_projection(params.cells_per_axis)
+    world = si.world
+    cell_size = params.cell_size or derived_cell_size(world.width, world.height)
+    return _projection(si.system, 1.0 / cell_size, params.velocity_cell_size)
 
 
 def _projection(system, inverse_cell: float, velocity_cell_size: float | None):

@@ -44,19 +44,24 @@ A second departure (``goal_controls``): a node the goal is within one step's
 reach of also gets a few random controls in its reachable set, as the fixed
 full-thrust steps tend to jump over the small goal disc.
 
-Reachable positions live in a :class:`~planning_core.nearest.quadtree.QuadtreeNearest`;
-each point's index maps to its node and control.
+Kinoplan systems (SPEC 5): a node's fixed reachable set is every combination of
+``levels`` values of each held control (2: its bounds) held for
+``reach_seconds`` (the system's ``reachable_controls``), and "closest" is the
+problem's metric over whole states (``si.closeness``); the goal is within one
+step's reach of a node when it is no farther than the node's farthest fixed
+reachable state. docs/planners-family.md lists each system's set.
+
+Reachable states live in ``si.new_nearest()`` (the grid: a quadtree by position;
+kinoplan: a kd-tree by the metric); each point's index maps to its node and control.
 """
 
 from __future__ import annotations
 
 import heapq
-import math
 import random
 from dataclasses import dataclass
 
 from planning_core.interrupt import Stop
-from planning_core.nearest.quadtree import QuadtreeNearest
 from planning_core.space_information import SpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
@@ -82,6 +87,12 @@ class RGRRTParams:
     step's reach of (the fixed set tends to jump over the goal disc); 0 is the paper."""
     random_controls: int = 0
     """Extra random controls per node, drawn once when it is added; 0 is the paper."""
+    levels: int = 2
+    """Kinoplan systems: each held control at this many evenly spaced values over its
+    bounds, every combination in the reachable set (2: the corners of the control box)."""
+    reach_seconds: float = 0.5
+    """Kinoplan systems: how long each control of the reachable set is held (K is
+    this over DT, rounded, within [KMIN, KMAX])."""
 
     goal_distance: str = "cells"
     """"cells": ``guided_share`` of the iterations add the unused reachable state
@@ -93,8 +104,10 @@ class RGRRTParams:
         for name in ("goal_bias", "guided_share"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise ValueError(f"{name} must be in [0, 1]")
-        if self.angles < 1:
-            raise ValueError("angles must be at least 1")
+        if self.angles < 1 or self.levels < 1:
+            raise ValueError("angles and levels must be at least 1")
+        if not self.reach_seconds > 0.0:
+            raise ValueError("reach_seconds must be positive")
         for name in ("random_controls", "goal_controls"):
             if getattr(self, name) < 0:
                 raise ValueError(f"{name} must be non-negative")
@@ -108,8 +121,9 @@ Params = RGRRTParams
 class _ReachableSets:
     """Every node's reachable states, indexed like the quadtree of their positions."""
 
-    def __init__(self, width: float, height: float):
-        self.index = QuadtreeNearest(width, height)
+    def __init__(self, si):
+        self.index = si.new_nearest()
+        self.closeness = si.closeness
         self.states: list[tuple[float, ...]] = []
         self.owner: list[int] = []
         self.control: list[tuple[float, ...]] = []
@@ -122,7 +136,7 @@ class _ReachableSets:
         return len(self.states)
 
     def add(self, owner: int, state, control) -> int:
-        self.index.add(state[0], state[1])
+        self.index.add(state)
         self.states.append(state)
         self.owner.append(owner)
         self.control.append(control)
@@ -130,14 +144,13 @@ class _ReachableSets:
         self.child.append(-1)
         return len(self.states) - 1
 
-    def closest_of(self, node: int, node_state, tx: float, ty: float) -> int:
-        """``node``'s reachable state closest to (tx, ty), or -1 when the node
-        itself is closer than all of them."""
-        nx, ny = node_state[0], node_state[1]
-        best, best_d2 = -1, (nx - tx) ** 2 + (ny - ty) ** 2
+    def closest_of(self, node: int, node_state, target) -> int:
+        """``node``'s reachable state closest to ``target`` (``si.closeness``), or
+        -1 when the node itself is closer than all of them."""
+        closeness = self.closeness
+        best, best_d2 = -1, closeness(node_state, target)
         for candidate in range(self.first[node], self.first[node + 1]):
-            rx, ry = self.states[candidate][0], self.states[candidate][1]
-            d2 = (rx - tx) ** 2 + (ry - ty) ** 2
+            d2 = closeness(self.states[candidate], target)
             if d2 <= best_d2:
                 best, best_d2 = candidate, d2
         return best
@@ -149,9 +162,9 @@ class _Search:
     def __init__(self, si: SpaceInformation, rng: random.Random, params: RGRRTParams,
                  stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
-        self.fixed_controls = si.system.reachable_controls(params.angles, params.thrusts)
+        self.fixed_controls = _fixed_controls(si, params)
         self.tree = MotionTree(si.start)
-        self.reach = _ReachableSets(si.world.width, si.world.height)
+        self.reach = _ReachableSets(si)
         self.iterations = 0
         along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
         self.guided = along is not None
@@ -162,30 +175,49 @@ class _Search:
             self.guide_key = (stopping_point_key(along, si) if params.guide_by_stopping_point
                               else lambda state: along(state[0], state[1]))
 
-    def node_controls(self, state) -> list:
-        """The fixed set, plus random controls when asked or when the goal is in reach."""
+    def random_controls(self, state, ends: list) -> list:
+        """Random controls for the node: ``random_controls``, and ``goal_controls``
+        more when the goal is within one step's reach (a grid vehicle's
+        ``step_reach``; a kinoplan node's farthest fixed reachable state)."""
         params, si = self.params, self.si
         extra = params.random_controls
-        if params.goal_controls and si.goal.distance(state) <= si.system.step_reach(state):
-            extra += params.goal_controls
-        if not extra:
-            return self.fixed_controls
-        return self.fixed_controls + [si.sample_control(self.rng) for _ in range(extra)]
+        if params.goal_controls:
+            if si.duration is None:
+                reach = si.system.step_reach(state)
+            else:
+                reach = max((si.closeness(state, end) for end in ends), default=0.0)
+            if si.goal.distance(state) <= reach:
+                extra += params.goal_controls
+        return [si.sample_control(self.rng) for _ in range(extra)]
 
     def expand(self, node: int) -> int | None:
         """File the node's reachable states; a goal node made from one, if any."""
-        si, tree, reach = self.si, self.tree, self.reach
-        state = tree.states[node]
-        for control in self.node_controls(state):
-            end = si.propagate_valid(state, control)
-            if end is None or end == state:
-                continue  # (coasting at rest goes nowhere: no duplicate node)
-            if si.goal.reached(end):
-                return tree.add(node, end, control)
-            chosen = reach.add(node, end, control)
-            if self.guided:
-                heapq.heappush(self.by_distance, (self.guide_key(end), chosen))
-        reach.first.append(len(reach))
+        state = self.tree.states[node]
+        ends: list = []
+        for control in self.fixed_controls:
+            goal_node = self.file(node, state, control, ends)
+            if goal_node is not None:
+                return goal_node
+        for control in self.random_controls(state, ends):
+            goal_node = self.file(node, state, control, ends)
+            if goal_node is not None:
+                return goal_node
+        self.reach.first.append(len(self.reach))
+        return None
+
+    def file(self, node: int, state, control, ends: list) -> int | None:
+        """One reachable state of ``node`` (appended to ``ends``); a goal node if
+        it reaches the goal region, which then joins the tree at once."""
+        si = self.si
+        end = si.propagate_valid(state, control)
+        if end is None or end == state:
+            return None  # (coasting at rest goes nowhere: no duplicate node)
+        if si.goal.reached(end):
+            return self.tree.add(node, end, control)
+        ends.append(end)
+        chosen = self.reach.add(node, end, control)
+        if self.guided:
+            heapq.heappush(self.by_distance, (self.guide_key(end), chosen))
         return None
 
     def take(self, chosen: int) -> int | None:
@@ -204,20 +236,19 @@ class _Search:
                 return candidate
         return -1
 
-    def toward(self, tx: float, ty: float) -> int:
-        """The reachable state to add for target (tx, ty), or -1 to reject it."""
-        reach, states = self.reach, self.tree.states
-        chosen = reach.index.nearest(tx, ty)
+    def toward(self, target) -> int:
+        """The reachable state to add for ``target``, or -1 to reject it."""
+        reach, states, closeness = self.reach, self.tree.states, self.si.closeness
+        chosen = reach.index.nearest(target)
         while chosen >= 0 and reach.used[chosen]:
             # That state is a node already: go on from it, one level down, by the
             # same rule as below.
             node = reach.child[chosen]
-            chosen = reach.closest_of(node, states[node], tx, ty)
+            chosen = reach.closest_of(node, states[node], target)
         if chosen < 0:
             return -1
-        ox, oy = states[reach.owner[chosen]][0], states[reach.owner[chosen]][1]
-        rx, ry = reach.states[chosen][0], reach.states[chosen][1]
-        if (ox - tx) ** 2 + (oy - ty) ** 2 < (rx - tx) ** 2 + (ry - ty) ** 2:
+        if closeness(states[reach.owner[chosen]], target) < closeness(reach.states[chosen],
+                                                                      target):
             return -1  # the target lies behind the node: no move of it gets closer
         return chosen
 
@@ -238,10 +269,10 @@ class _Search:
             chosen = self.best_first()
         else:
             if rng.random() < params.goal_bias:
-                tx, ty = self.si.goal.point
+                target = self.si.goal_target(rng)
             else:
-                tx, ty = self.si.sample_target(rng)
-            chosen = self.toward(tx, ty)
+                target = self.si.sample_target(rng)
+            chosen = self.toward(target)
         return self.take(chosen) if chosen >= 0 else None
 
 
@@ -249,6 +280,16 @@ class _Search:
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RGRRTParams = RGRRTParams()) -> PlanResult:
     return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "RG-RRT")
+
+
+def _fixed_controls(si, params: RGRRTParams) -> list:
+    """The reachable set's controls: a grid vehicle's own (coasting and thrusts at
+    ``angles``); a kinoplan system's ``levels`` values per control, held ``reach_seconds``."""
+    if si.duration is None:
+        return si.system.reachable_controls(params.angles, params.thrusts)
+    kmin, kmax = si.duration
+    k = min(max(round(params.reach_seconds / si.system.dt), kmin), kmax)
+    return si.system.reachable_controls(params.levels, k)
 
 
 # Ranks a braking line that meets a blocked cell after every free one (well below

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from planning_core.space_information import SpaceInformation
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
-from rrt_cli.planners.tree import MotionTree
+from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 
 @dataclass(frozen=True)
@@ -36,6 +36,9 @@ class RRTParams:
     mazes tractable)."""
     min_extension: float = 0.01
     """Geometric systems: a partial extension shorter than this adds no node."""
+    kinoplan_controls: int = 1
+    """Kinoplan systems' ``controls_per_extension`` (1, as OMPL's control RRT, beat 10
+    on every family problem: docs/planners-family.md)."""
     wall_clearance: float = 1.0
     """Geometric systems: a partial extension stops this far short of the first
     invalid state (a node pressed against a wall fails every extension toward
@@ -46,6 +49,8 @@ class RRTParams:
 def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
     began = time.perf_counter()
+    if si.duration is not None:  # a kinoplan system
+        params = dataclasses.replace(params, controls_per_extension=params.kinoplan_controls)
     steering = make_steering(si, params)
     goal = si.goal
     tree = MotionTree(si.start)
@@ -53,12 +58,9 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
     index.add(si.start)
     system = si.system
 
-    if goal.reached(si.start):
-        # A kinoplan start may drift out of the goal under any held control: then plan.
-        controls = si.start_in_goal_controls()
-        if controls is not None:
-            solved = tree.result(system, PlanStatus.SOLVED, 0, 0, began)
-            return dataclasses.replace(solved, path_controls=controls) if controls else solved
+    solved = start_in_goal(si, tree, began)
+    if solved is not None:
+        return solved
     if si.goal_certainly_unreachable(stop.time_is_up):
         return tree.result(system, PlanStatus.UNREACHABLE, None, 0, began,
                            "no chain of free cells joins the start and the goal")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus
@@ -67,8 +68,9 @@ def run_tree_search(si, stop, make_search, name: str) -> PlanResult:
     began = time.perf_counter()
     search = make_search()
     tree, system = search.tree, si.system
-    if si.goal.reached(si.start):
-        return tree.result(system, PlanStatus.SOLVED, 0, 0, began)
+    solved = start_in_goal(si, tree, began)
+    if solved is not None:
+        return solved
     goal_node = search.begin()
     while goal_node is None:
         limit = stop.status(search.iterations)
@@ -80,3 +82,16 @@ def run_tree_search(si, stop, make_search, name: str) -> PlanResult:
                                why)
         goal_node = search.iterate()
     return tree.result(system, PlanStatus.SOLVED, goal_node, search.iterations, began)
+
+
+def start_in_goal(si, tree: MotionTree, began: float) -> PlanResult | None:
+    """The answer when the start is in the goal region: the path of the start alone,
+    with the controls ``si.start_in_goal_controls()`` gives (a kinoplan start may
+    drift out under any held control: then None, plan as usual)."""
+    if not si.goal.reached(si.start):
+        return None
+    controls = si.start_in_goal_controls()
+    if controls is None:
+        return None
+    solved = tree.result(si.system, PlanStatus.SOLVED, 0, 0, began)
+    return dataclasses.replace(solved, path_controls=controls) if controls else solved

@@ -115,10 +115,10 @@ def test_nearest_is_by_the_metric_with_angles_wrapping():
     assert si.closeness((3.1, 0.0), (-3.1, 0.0)) == pytest.approx(2 * 3.141592653589793 - 6.2)
 
 
-def test_only_rrt_is_registered_for_kinoplan_problems():
+def test_the_kinodynamic_planners_are_registered_for_kinoplan_problems():
     pendulum = parse_kinoplan((FAMILY / "pendulum-t3.kp").read_text()).system
     assert {name for name, entry in PLANNERS.items()
-            if entry.plans_for_kinoplan(pendulum)} == {"rrt"}
+            if entry.plans_for_kinoplan(pendulum)} == {"blossom", "kpiece", "rgrrt", "rrt"}
 
 
 # ----- the command line -------------------------------------------------------------
@@ -146,7 +146,7 @@ def test_cli_vehicle_flags_with_a_kinoplan_problem_are_usage_errors(flags):
     assert b"Traceback" not in done.stderr
 
 
-@pytest.mark.parametrize("planner", ["kpiece", "rgrrt", "prm", "rrtconnect"])
+@pytest.mark.parametrize("planner", ["prm", "prmstar", "rrtconnect"])
 def test_cli_planners_without_kinoplan_support_refuse_in_one_line(planner):
     done = run_planner(["-planner", planner], PENDULUM)
     assert done.returncode == 2 and done.stdout == b""
@@ -154,11 +154,12 @@ def test_cli_planners_without_kinoplan_support_refuse_in_one_line(planner):
     assert "does not plan for kinoplan problems of the pendulum system" in done.stderr.decode()
 
 
-def test_cli_refuses_geometric_kinoplan_systems_in_one_line():
-    done = run_planner([], (FAMILY / "arm2-pair1.kp").read_text())
+@pytest.mark.parametrize("planner", ["blossom", "kpiece", "rgrrt"])
+def test_cli_kinodynamic_planners_refuse_geometric_kinoplan_systems_in_one_line(planner):
+    done = run_planner(["-planner", planner], (FAMILY / "arm2-pair1.kp").read_text())
     assert done.returncode == 2 and done.stdout == b""
     assert done.stderr.decode().count("\n") == 1
-    assert "no planner plans for geometric kinoplan systems yet" in done.stderr.decode()
+    assert "does not plan for kinoplan problems of the arm2 system" in done.stderr.decode()
 
 
 @pytest.mark.parametrize("text,where", [

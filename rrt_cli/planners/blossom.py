@@ -1,0 +1,100 @@
+"""Blossom RRT (seed 004's planner for the first-order car, SPEC 5.2), for every
+kinodynamic family system.
+
+Each iteration draws a target (the goal with probability ``goal_bias``, else a
+uniform state), finds the tree node nearest to it by the metric, and grows a
+"blossom" there: ``b`` random controls, each held for up to KMAX slices and
+stopped at the first invalid slice, the last valid state kept (so a control's K
+is its number of valid slices; fewer than KMIN and it adds nothing). The end
+nearest the target becomes the new node. Holding each control as long as it
+stays valid makes long, cheap strides across open space; the search ends at the
+first node in the goal region.
+
+Grid vehicles (the spaceship) hold a control for one whole step, so blossom does
+not plan for them: RRT with ``controls_per_extension = b`` is the same idea there.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import time
+from dataclasses import dataclass
+
+from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
+from rrt_cli.planners.tree import MotionTree, start_in_goal
+
+
+@dataclass(frozen=True)
+class BlossomParams:
+    b: int = 5
+    """Random controls tried from the nearest node per iteration (seed 004: 1, 3, 5)."""
+    goal_bias: float = 0.05
+    """Probability that the target is the goal (as RRT's, SPEC 2)."""
+    kmax: int | None = None
+    """Most slices a control is held; None: the problem's KMAX (car1: 250)."""
+
+    def __post_init__(self):
+        if self.b < 1:
+            raise ValueError("b must be at least 1")
+        if not 0.0 <= self.goal_bias <= 1.0:
+            raise ValueError("goal_bias must be in [0, 1]")
+        if self.kmax is not None and self.kmax < 1:
+            raise ValueError("kmax must be at least 1")
+
+
+Params = BlossomParams
+
+
+@guarded
+def solve(si, stop: StopCondition, rng: random.Random,
+          params: BlossomParams = BlossomParams()) -> PlanResult:
+    system = si.system
+    if not system.kinodynamic or not hasattr(system, "kmax"):
+        raise ValueError("blossom plans for the kinodynamic family systems only")
+    began = time.perf_counter()
+    tree = MotionTree(si.start)
+    index = si.new_nearest()
+    index.add(si.start)
+    goal = si.goal
+    solved = start_in_goal(si, tree, began)
+    if solved is not None:
+        return solved
+    grow = _blossom(si, params.b, system.kmin, params.kmax or system.kmax)
+    goal_target, sample_target, states = si.goal_target, si.sample_target, tree.states
+    iterations = 0
+    while True:
+        limit = stop.status(iterations)
+        if limit is not None:
+            return tree.result(system, limit, None, iterations, began)
+        iterations += 1
+        target = goal_target(rng) if rng.random() < params.goal_bias else sample_target(rng)
+        near = index.nearest(target)
+        step = grow(states[near], target, rng)
+        if step is None:
+            continue
+        node = tree.add(near, *step)
+        index.add(step[0])
+        if goal.reached(step[0]):
+            return tree.result(system, PlanStatus.SOLVED, node, iterations, began)
+
+
+def _blossom(si, b: int, kmin: int, kmax: int):
+    """``grow(state, target, rng) -> (end, control) | None``: the best of ``b``
+    controls held while valid, by ``si.closeness`` to the target."""
+    advance, closeness = si.advance, si.closeness
+    sample_values = si.system.sample_values
+
+    def grow(state, target, rng):
+        best, best_d = None, math.inf
+        for _ in range(b):
+            values = sample_values(rng)
+            end, k = advance(state, values, kmax)
+            if k < kmin:
+                continue
+            d = closeness(end, target)
+            if d < best_d:
+                best, best_d = (end, (*values, k)), d
+        return best
+
+    return grow
