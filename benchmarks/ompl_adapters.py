@@ -107,6 +107,17 @@ class Termination:
         return time.perf_counter() >= self.deadline
 
 
+def solve_with(ob, setup, planner, time_limit: float, timed: bool = False):
+    """``planner`` on ``setup`` until ``time_limit``: (status, termination, solved).
+    ``timed``: OMPL's own timer instead of our counting condition (0 polls)."""
+    setup.setPlanner(planner)
+    termination = Termination(time_limit)
+    condition = (ob.timedPlannerTerminationCondition(time_limit) if timed
+                 else ob.PlannerTerminationCondition(termination))
+    status = setup.solve(condition)
+    return status, termination, setup.haveExactSolutionPath()
+
+
 def make_bounds(ob, lows, highs):
     bounds = ob.RealVectorBounds(len(lows))
     for index, (low, high) in enumerate(zip(lows, highs)):
@@ -142,10 +153,7 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
         chosen.setGoalBias(params.goal_bias)
     else:
         chosen = og.RRTConnect(info)
-    setup.setPlanner(chosen)
-    termination = Termination(time_limit)
-    status = setup.solve(ob.PlannerTerminationCondition(termination))
-    solved = setup.haveExactSolutionPath()
+    status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:
         trajectory = tuple((s[0], s[1]) for s in setup.getSolutionPath().getStates())
@@ -220,10 +228,7 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
         chosen.setGoalBias(params.goal_bias)
     else:
         chosen = oc.KPIECE1(info)
-    setup.setPlanner(chosen)
-    termination = Termination(time_limit)
-    status = setup.solve(ob.PlannerTerminationCondition(termination))
-    solved = setup.haveExactSolutionPath()
+    status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:
         path = setup.getSolutionPath()

@@ -38,7 +38,7 @@ import random
 import time
 from dataclasses import dataclass
 
-from benchmarks.ompl_adapters import OmplResult, Termination, inside, make_bounds, ompl_seed
+from benchmarks.ompl_adapters import OmplResult, inside, make_bounds, ompl_seed, solve_with
 from planning_core.kinoplan import KinoplanProblem, state_validator
 
 KINODYNAMIC_PLANNERS = ("rrt", "kpiece1")
@@ -202,10 +202,7 @@ def _solve_kinodynamic(ob, oc, problem, layout, planner, time_limit, params, beg
     chosen = oc.RRT(info) if planner == "rrt" else oc.KPIECE1(info)
     if planner == "rrt":
         chosen.setGoalBias(params.goal_bias)
-    setup.setPlanner(chosen)
-    termination = Termination(time_limit)
-    status = setup.solve(ob.PlannerTerminationCondition(termination))
-    solved = setup.haveExactSolutionPath()
+    status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:
         path = setup.getSolutionPath()
@@ -266,13 +263,9 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
     chosen = {"rrt": og.RRT, "rrtconnect": og.RRTConnect, "prm": og.PRM}[planner](info)
     if planner == "rrt":
         chosen.setGoalBias(params.goal_bias)
-    setup.setPlanner(chosen)
-    termination = Termination(time_limit)
-    if planner == "prm":  # see the module's note: PRM's threads and a Python condition
-        status = setup.solve(ob.timedPlannerTerminationCondition(time_limit))
-    else:
-        status = setup.solve(ob.PlannerTerminationCondition(termination))
-    solved = setup.haveExactSolutionPath()
+    # PRM: OMPL's own timer (see the module's note: PRM's threads and a Python condition).
+    status, termination, solved = solve_with(ob, setup, chosen, time_limit,
+                                             timed=planner == "prm")
     trajectory = tuple(get(s) for s in setup.getSolutionPath().getStates()) if solved else ()
     data = ob.PlannerData(info)
     setup.getPlannerData(data)
