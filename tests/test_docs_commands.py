@@ -29,7 +29,7 @@ RUNNABLE = ("./run.sh", "rrt-validator", "./rrt-validator")
 def _doc_commands() -> list[tuple[str, str]]:
     """(file, command) for every command line of every fenced shell block."""
     found = []
-    for doc in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+    for doc in [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]:
         for block in BLOCK.findall(doc.read_text()):
             block = block.replace("\\\n", " ")
             for line in block.splitlines():
