@@ -1,16 +1,19 @@
 """Whole-process time of two planner commands on the same problems, taking turns.
 
     python -m benchmarks.bench_startup [--pairs 15] [--problems FILE ...] [--flags=-grad]
-                                       [--ours "./run.sh -seed 1"]
+                                       [--ours "./run.sh -seed 1" [--ours "OTHER" ...]]
                                        [--theirs "python benchmarks/ompl_planner.py -seed 1"]
 
 What a grader's script pays per run is the whole process: interpreter start-up,
 imports, reading, planning and printing. Each pair runs both commands once with
 the problem on stdin (stdout and stderr discarded), in alternating order (ours
 first in even pairs, theirs first in odd ones) so that a drift in the machine's
-load hits both alike; one unmeasured run of each comes first. Prints, per problem
-and over all of them, the median seconds of each command, the ratio of the
-medians (ours over theirs) and the median of the per-pair ratios. The default
+load hits both alike; one unmeasured run of each comes first. Several ``--ours``
+(e.g. a checkout before and after a change) are measured in the same rounds, the
+first command of each round rotating, each paired with that round's run of
+theirs. Prints, per problem and over all of them, the median seconds of each
+command, the ratio of the medians (ours over theirs) and the median of the
+per-pair ratios: one table per ``--ours``. The default
 ``theirs`` is OMPL's peer planner, run by this interpreter (it needs the ``ompl``
 package). Tables on stdout; a command that fails is one line on stderr, exit 1.
 """
@@ -64,19 +67,18 @@ def time_once(command: list[str], problem: Path) -> float:
     return seconds
 
 
-def alternate(ours: list[str], theirs: list[str], problem: Path, pairs: int) -> Pairs:
-    """``pairs`` runs of each, taking turns, after one unmeasured run of each."""
-    time_once(ours, problem)
-    time_once(theirs, problem)
-    mine, others = [], []
-    for pair in range(pairs):
-        if pair % 2 == 0:
-            mine.append(time_once(ours, problem))
-            others.append(time_once(theirs, problem))
-        else:
-            others.append(time_once(theirs, problem))
-            mine.append(time_once(ours, problem))
-    return Pairs(tuple(mine), tuple(others))
+def take_turns(commands: list[list[str]], problem: Path, rounds: int) -> list[tuple[float, ...]]:
+    """``rounds`` runs of each command, one of each per round, round r starting with
+    command r (modulo their number: two commands alternate), after one unmeasured
+    run of each."""
+    for command in commands:
+        time_once(command, problem)
+    seconds: list[list[float]] = [[] for _ in commands]
+    for round_ in range(rounds):
+        for turn in range(len(commands)):
+            which = (round_ + turn) % len(commands)
+            seconds[which].append(time_once(commands[which], problem))
+    return [tuple(times) for times in seconds]
 
 
 def table(results: dict[str, Pairs]) -> str:
@@ -100,7 +102,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="problem files (default: the course problems)")
     parser.add_argument("--flags", default="",
                         help="added to both commands, e.g. --flags=-grad")
-    parser.add_argument("--ours", default="./run.sh -seed 1", help="our command")
+    parser.add_argument("--ours", action="append",
+                        help="our command (default: ./run.sh -seed 1); repeat it to "
+                             "measure several in the same rounds")
     parser.add_argument("--theirs", default=f"{shlex.quote(sys.executable)} "
                         "benchmarks/ompl_planner.py -seed 1", help="the peer's command")
     return parser
@@ -111,17 +115,20 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.pairs < 1:
         parser.error("--pairs must be at least 1")
-    ours = shlex.split(args.ours) + shlex.split(args.flags)
+    ours = [shlex.split(command) + shlex.split(args.flags)
+            for command in args.ours or ["./run.sh -seed 1"]]
     theirs = shlex.split(args.theirs) + shlex.split(args.flags)
-    print(f"ours:   {shlex.join(ours)}\ntheirs: {shlex.join(theirs)}\n"
-          f"{args.pairs} alternating pairs per problem, whole process, medians")
     try:
-        results = {path.stem: alternate(ours, theirs, path.resolve(), args.pairs)
-                   for path in args.problems}
+        times = {path.stem: take_turns([*ours, theirs], path.resolve(), args.pairs)
+                 for path in args.problems}
     except CommandFailed as error:
         sys.stderr.write(f"bench_startup: {error}\n")
         return 1
-    print(table(results))
+    print(f"theirs: {shlex.join(theirs)}\n{args.pairs} rounds per problem, the commands "
+          "taking turns, whole process, medians")
+    for which, command in enumerate(ours):
+        print(f"ours:   {shlex.join(command)}")
+        print(table({name: Pairs(runs[which], runs[-1]) for name, runs in times.items()}))
     return 0
 
 

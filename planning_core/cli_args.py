@@ -2,11 +2,15 @@
 are one usage line and one error line on stderr with exit status 2 (never a
 traceback), with hints for the usual slips; the option types (ASCII numbers only,
 ranges checked before any conversion); the one bounded reader of the problem on
-stdin; and writes to stdout and stderr that never raise."""
+stdin; and writes to stdout and stderr that never raise.
+
+argparse is imported only when a parser is made or an option value is bad
+(:data:`OneLineErrorParser` is made on first use): the planner parses its common
+command lines without it, and argparse with gettext and locale cost its start-up
+about 3 ms."""
 
 from __future__ import annotations
 
-import argparse
 import math
 import os
 import re
@@ -114,82 +118,101 @@ def _terminal_columns() -> int:
         return 80
 
 
-class _HelpFormatter(argparse.HelpFormatter):
-    """argparse's layout and width, without argparse's import of shutil (and zlib,
-    bz2, lzma with it): every add_argument makes a formatter, so every run paid it."""
+def _make_parser_class():
+    """:class:`OneLineErrorParser`, made on first use (see the module's doc)."""
+    import argparse
 
-    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None, **more):
-        width = _terminal_columns() - 2 if width is None else width
-        super().__init__(prog, indent_increment, max_help_position, width, **more)
+    class _HelpFormatter(argparse.HelpFormatter):
+        """argparse's layout and width, without argparse's import of shutil (and zlib,
+        bz2, lzma with it): every add_argument makes a formatter, so every run paid it."""
+
+        def __init__(self, prog, indent_increment=2, max_help_position=24, width=None, **more):
+            width = _terminal_columns() - 2 if width is None else width
+            super().__init__(prog, indent_increment, max_help_position, width, **more)
 
 
-class OneLineErrorParser(argparse.ArgumentParser):
-    """``argparse`` with errors as ``usage: ...`` and ``PROG: error: ...``, exit 2; an
-    unknown argument gets a hint (a near-miss option, a problem file given by name)."""
+    class OneLineErrorParser(argparse.ArgumentParser):
+        """``argparse`` with errors as ``usage: ...`` and ``PROG: error: ...``, exit 2; an
+        unknown argument gets a hint (a near-miss option, a problem file given by name)."""
 
-    def __init__(self, *args, **kwargs):
-        kwargs.setdefault("formatter_class", _HelpFormatter)
-        super().__init__(*args, **kwargs)
+        def __init__(self, *args, **kwargs):
+            kwargs.setdefault("formatter_class", _HelpFormatter)
+            super().__init__(*args, **kwargs)
 
-    def error(self, message):
-        say(self.format_usage().rstrip("\n"))
-        say(f"{self.prog}: error: {message}")
-        raise SystemExit(EXIT_USAGE)
+        def error(self, message):
+            say(self.format_usage().rstrip("\n"))
+            say(f"{self.prog}: error: {message}")
+            raise SystemExit(EXIT_USAGE)
 
-    def parse_args(self, args=None, namespace=None):
-        parsed, extras = self.parse_known_args(args, namespace)
-        if extras:
-            self.reject_extras(extras)
-        return parsed
+        def parse_args(self, args=None, namespace=None):
+            parsed, extras = self.parse_known_args(args, namespace)
+            if extras:
+                self.reject_extras(extras)
+            return parsed
 
-    def reject_extras(self, extras: list[str], more_hints: tuple[str, ...] = ()) -> None:
-        """argparse's "unrecognized arguments" error, with the hints in brackets."""
-        hints = [*self.extras_hints(extras), *more_hints]
-        suffix = f" ({'; '.join(hints)})" if hints else ""
-        self.error(f"unrecognized arguments: {' '.join(extras)}{suffix}")
+        def reject_extras(self, extras: list[str], more_hints: tuple[str, ...] = ()) -> None:
+            """argparse's "unrecognized arguments" error, with the hints in brackets."""
+            hints = [*self.extras_hints(extras), *more_hints]
+            suffix = f" ({'; '.join(hints)})" if hints else ""
+            self.error(f"unrecognized arguments: {' '.join(extras)}{suffix}")
 
-    def extras_hints(self, extras: list[str]) -> list[str]:
-        hints = []
-        for arg in extras:
-            if arg.startswith("-") and len(arg) > 1:
-                near = self.near_miss(arg)
-                if near is not None:
-                    hints.append(f"did you mean {near}?")
-            elif looks_like_problem_file(arg):
-                hints.append(f"the problem is read from stdin: use < {arg}")
-        return hints
+        def extras_hints(self, extras: list[str]) -> list[str]:
+            hints = []
+            for arg in extras:
+                if arg.startswith("-") and len(arg) > 1:
+                    near = self.near_miss(arg)
+                    if near is not None:
+                        hints.append(f"did you mean {near}?")
+                elif looks_like_problem_file(arg):
+                    hints.append(f"the problem is read from stdin: use < {arg}")
+            return hints
 
-    def near_miss(self, arg: str) -> str | None:
-        """The option string closest to ``arg`` (difflib's default cutoff), or None."""
-        import difflib  # only on this error path
-        options = [s for action in self._actions for s in action.option_strings]
-        close = difflib.get_close_matches(arg.split("=", 1)[0], options, n=1)
-        return close[0] if close else None
+        def near_miss(self, arg: str) -> str | None:
+            """The option string closest to ``arg`` (difflib's default cutoff), or None."""
+            import difflib  # only on this error path
+            options = [s for action in self._actions for s in action.option_strings]
+            close = difflib.get_close_matches(arg.split("=", 1)[0], options, n=1)
+            return close[0] if close else None
+
+    return OneLineErrorParser
+
+
+def __getattr__(name: str):
+    if name == "OneLineErrorParser":
+        globals()[name] = parser_class = _make_parser_class()
+        return parser_class
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ----- option types -----------------------------------------------------------------
 
 
+def _type_error(message: str) -> Exception:
+    """argparse's ArgumentTypeError: its message is the whole error line's."""
+    import argparse  # only for a bad value
+    return argparse.ArgumentTypeError(message)
+
+
 def positive_float(text: str) -> float:
     """An option value that must be a positive finite ASCII decimal (a time limit)."""
     if not _DECIMAL.fullmatch(text):
-        raise argparse.ArgumentTypeError(f"{_show(text)} is not a number")
+        raise _type_error(f"{_show(text)} is not a number")
     value = float(text)
     if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"{_show(text)} must be a positive finite number")
+        raise _type_error(f"{_show(text)} must be a positive finite number")
     return value
 
 
 def _bounded_integer(text: str, low: int, high: int, what: str) -> int:
     """An ASCII integer in [low, high]; its digits are counted before int() sees them."""
     if not _INTEGER.fullmatch(text):
-        raise argparse.ArgumentTypeError(f"{_show(text)} is not an integer")
+        raise _type_error(f"{_show(text)} is not an integer")
     digits = text.lstrip("+-").lstrip("0") or "0"
     if len(digits) <= len(str(high)):
         value = -int(digits) if text.startswith("-") else int(digits)
         if low <= value <= high:
             return value
-    raise argparse.ArgumentTypeError(f"{_show(text)} is out of range: {what}")
+    raise _type_error(f"{_show(text)} is out of range: {what}")
 
 
 def seed(text: str) -> int:
@@ -286,13 +309,6 @@ def parse_any_problem(text: str):
         if looks_like_kinoplan(text):
             return parse_kinoplan(text)
     return parse_problem(text)
-
-
-    try:
-        return parse_any_problem(text)
-    except ProblemFormatError as error:
-        say(f"{prog}: bad problem: {error}")
-        return None
 
 
 def is_kinoplan(problem) -> bool:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from collections.abc import Sequence
 
 GOAL_TOLERANCE = 0.1
 PLANNER_MARGIN = 1e-9
@@ -18,6 +18,8 @@ PLANNER_MARGIN = 1e-9
 
 @dataclass(frozen=True)
 class GoalRegion:
+    """The goal point and the tolerance around it."""
+
     point: tuple[float, float]
     """The goal position (x, y)."""
     tolerance: float = GOAL_TOLERANCE

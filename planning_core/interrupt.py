@@ -10,9 +10,9 @@ itself, and a computation given no ``stop`` runs to the end.
 
 from __future__ import annotations
 
-from typing import Callable, Optional
+from collections.abc import Callable
 
-Stop = Optional[Callable[[], bool]]
+Stop = Callable[[], bool] | None
 
 POLL_EVERY = 1024
 """Cells (or heap pops) between two calls of ``stop``: a few milliseconds of work."""

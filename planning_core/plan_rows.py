@@ -8,7 +8,7 @@ reaches is not printed) and its edges as ``parent state + control``.
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 Row = tuple[float, ...]
 

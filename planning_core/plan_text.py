@@ -12,7 +12,7 @@ failures are a :class:`PlanParseError` naming the 1-based line.
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 Row = tuple[float, ...]
 

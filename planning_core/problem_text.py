@@ -20,7 +20,7 @@ BLOCKED_CELL = "#"
 _INTEGER = re.compile(r"[+-]?[0-9]+")
 # No nested quantifiers that can trade digits: a long digit run fails in linear time.
 _NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-_NON_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+_NON_FINITE = r"[+-]?(?:nan|inf|infinity)"  # compiled (by re's cache) only for a bad number
 _TOKEN = re.compile(r"\S+")
 _BLANK_LINES = re.compile(r"(?:[^\S\n]*\n)*")
 _BLANK_REST = re.compile(r"[^\S\n]*")
@@ -129,14 +129,18 @@ def _read_size(cursor: _Cursor, what: str) -> int:
     return value
 
 
+def _is_non_finite(text: str) -> bool:
+    return re.fullmatch(_NON_FINITE, text, re.IGNORECASE) is not None
+
+
 def _read_coordinate(cursor: _Cursor, what: str) -> tuple[float, int, int]:
     token = cursor.next_token()
     if token is None:
         raise ProblemFormatError(*cursor.end_position(), f"missing {what}")
     text, line, column = token
-    if _NON_FINITE.fullmatch(text):
-        raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a finite number")
     if not _NUMBER.fullmatch(text):
+        if _is_non_finite(text):
+            raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a finite number")
         raise ProblemFormatError(line, column, f"{what} {_show(text)} is not a number")
     value = float(text)
     if not math.isfinite(value):
@@ -152,7 +156,7 @@ def _checked_row(cursor: _Cursor, width: int, height: int, rows_read: int) -> st
                                  f"{height}, found {rows_read}")
     row_text, line = found
     stripped = row_text.strip()
-    if _NUMBER.fullmatch(stripped) or _NON_FINITE.fullmatch(stripped):
+    if _NUMBER.fullmatch(stripped) or _is_non_finite(stripped):
         raise ProblemFormatError(line, 1, f"too few rows: expected {height}, found {rows_read}")
     if len(row_text) != width:
         raise ProblemFormatError(line, min(len(row_text), width) + 1, f"row {rows_read + 1} "

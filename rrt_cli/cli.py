@@ -9,41 +9,47 @@ system, RRT-Connect, PRM and PRM* for the geometric ones (arm2, rigid2), and
 Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
 its reader gone), 2 bad usage or bad problem, 3 no solution within the limits (or
 the goal is certainly unreachable). Writes to stderr never change the status.
+
+The usual command lines (exact option names, valid values) are read without
+argparse (:func:`quick_parse`, a start-up saving); argparse reads every other one
+and words its errors and help.
 """
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import random
+import sys
+from types import SimpleNamespace
 
-from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, is_kinoplan, parse_any_problem,
-                                    positive_float, positive_int, read_problem_from_stdin,
-                                    reject_vehicle_flags, reserve_standard_fds, say, seed,
-                                    vehicle_from_flags, write_stdout)
+from planning_core import cli_args
+from planning_core.cli_args import (EXIT_USAGE, add_vehicle_flags, describe_os_error,
+                                    is_kinoplan, parse_any_problem, positive_float,
+                                    positive_int, read_problem_from_stdin, reject_vehicle_flags,
+                                    reserve_standard_fds, say, seed, vehicle_from_flags,
+                                    write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.space_information import grid_space_information, kinoplan_space_information
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopCondition
-from rrt_cli.smoothing import smooth_path
 
 EXIT_SOLVED = 0
 EXIT_OUTPUT_FAILED = 1
 EXIT_NO_SOLUTION = 3
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
+DEFAULT_PLANNER = "rrt"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineErrorParser(
+def build_parser() -> cli_args.OneLineErrorParser:
+    parser = cli_args.OneLineErrorParser(
         prog="rrt_cli",
         description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
                     "problem); print the trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "
                "2 bad usage or bad problem, 3 no solution within the limits.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
-    parser.add_argument("-planner", default="rrt", choices=sorted(PLANNERS),
+    parser.add_argument("-planner", default=DEFAULT_PLANNER, choices=sorted(PLANNERS),
                         help="planning algorithm (default: rrt)")
     parser.add_argument("-seed", type=seed, default=None, metavar="N",
                         help="random seed, an integer in [0, 2^64); the same seed gives the "
@@ -60,6 +66,58 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-stats", action="store_true",
                         help="print one line of key=value statistics on stderr")
     return parser
+
+
+def _known_planner(name: str) -> str:
+    if name not in PLANNERS:
+        raise ValueError(name)
+    return name
+
+
+_SWITCHES = ("-ugrad", "-grad", "-left", "-smooth", "-stats")
+_VALUED = {"-planner": _known_planner, "-seed": seed, "-time": positive_float,
+           "-iterations": positive_int}
+_DEFAULTS = {"ugrad": False, "grad": False, "left": False, "smooth": False, "stats": False,
+             "planner": DEFAULT_PLANNER, "seed": None, "time": DEFAULT_TIME_LIMIT,
+             "iterations": DEFAULT_ITERATIONS}
+
+
+def quick_parse(argv: list[str]) -> SimpleNamespace | None:
+    """What ``build_parser().parse_args(argv)`` gives when every word is an exact
+    option name or a valid value of one; None for anything else (argparse decides)."""
+    values = dict(_DEFAULTS)
+    words = iter(argv)
+    for word in words:
+        if word in _SWITCHES:
+            values[word[1:]] = True
+        elif word in _VALUED:
+            text = next(words, None)
+            if text is None or text.startswith("-"):
+                return None
+            try:
+                values[word[1:]] = _VALUED[word](text)
+            except Exception:  # a bad value: argparse words the error
+                return None
+        else:
+            return None
+    return SimpleNamespace(**values)
+
+
+class _ParserOnError:
+    """Stands in for :func:`build_parser` after :func:`quick_parse`: a usage error
+    (e.g. -ugrad with -grad) makes the parser for its usage line."""
+
+    def error(self, message: str) -> None:
+        build_parser().error(message)
+
+
+def parse_command_line(argv: list[str] | None):
+    """The options and the parser (or its stand-in) for later usage errors."""
+    args = quick_parse(sys.argv[1:] if argv is None else argv)
+    if args is not None:
+        return args, _ParserOnError()
+    parser = build_parser()
+    return parser.parse_args(argv), parser
 
 
 def _space_information(parser, args, entry):
@@ -99,8 +157,7 @@ def _kinoplan_planners(system) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    args, parser = parse_command_line(argv)
     entry = PLANNERS[args.planner]
     found = _space_information(parser, args, entry)
     if found is None:
@@ -113,6 +170,7 @@ def main(argv: list[str] | None = None) -> int:
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
     result = planner.solve(si, stop, rng, planner.Params())
     if args.smooth and result.solved:
+        from rrt_cli.smoothing import smooth_path  # only with -smooth: start-up
         result = dataclasses.replace(result, path=smooth_path(si, result.path, rng))
     stats = result.stats
     if args.stats:
