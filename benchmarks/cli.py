@@ -5,11 +5,14 @@
                          [--planners rrt ompl-rrt ...] [--problems PATTERN ...]
                          [--max-size N] [--seeds N] [--time S] [--workers 2]
                          [--out DIR] [--no-ompl] [--no-plots] [--report-only]
+                         [--scheduler tcp://HOST:PORT] [--rerun]
 
 Writes into ``--out`` (default ``benchmarks/results/<preset>``): ``runs.csv``
 (one row per run), ``report.md`` (tables), ``plots.pdf`` and ``ompl-logs/``
 (OMPL's benchmark log format, for ompl_benchmark_statistics.py and Planner
-Arena), and ``meta.json``. Progress goes to stderr; the path of the report is
+Arena), ``runs.sqlite`` (every run as it finishes, in OMPL's database layout: a rerun
+of the same command keeps the runs stored there unless ``--rerun``; see
+``benchmarks/store.py``) and ``meta.json``. Progress goes to stderr; the path of the report is
 the only line on stdout. The ``family*`` presets (``benchmarks/family.py``) run the
 kinoplan problems of ``benchmarks/problems/family/`` and write their own report
 (``benchmarks/family_report.py``; no plots).
@@ -28,6 +31,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import datetime
+import importlib.util
 import json
 import os
 import platform
@@ -84,6 +88,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="rebuild the reports from --out/runs.csv without running")
     parser.add_argument("--strict", action="store_true",
                         help="validate with -strict (a cut corner is a failure)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run on the Dask cluster of this scheduler (tcp://HOST:PORT), "
+                             "--workers runs at a time; default: local worker processes")
+    parser.add_argument("--rerun", action="store_true",
+                        help="redo the runs already in --out/runs.sqlite (default: keep them)")
     return parser
 
 
@@ -194,6 +203,8 @@ def _check_args(parser: argparse.ArgumentParser, args: argparse.Namespace) -> No
                      "system: narrow with --problems)")
     if args.max_size is not None and args.preset in family.FAMILY_PRESETS:
         parser.error("--max-size is for the grid presets")
+    if args.scheduler and importlib.util.find_spec("distributed") is None:
+        parser.error("--scheduler needs Dask's distributed (pip install distributed)")
 
 
 def _report_only(parser: argparse.ArgumentParser, args: argparse.Namespace, out: Path) -> int:
@@ -239,25 +250,49 @@ def _choose_planners(parser: argparse.ArgumentParser, args: argparse.Namespace
 
 
 def _run(specs: list[RunSpec], args: argparse.Namespace, out: Path
-         ) -> tuple[list, Interrupted | None]:
-    """Every run, each row appended to runs.csv as it finishes; the rows in the
-    order of ``specs``, and how a Ctrl-C or SIGTERM stopped them, if one did."""
+         ) -> tuple[list, Interrupted | None, int]:
+    """Every run not in runs.sqlite already (all with ``--rerun``), each row stored and
+    appended to runs.csv as it finishes; the rows in the order of ``specs``, how a
+    Ctrl-C or SIGTERM stopped them if one did, and how many rows were kept."""
     # Imported here: the progress bar's library is needed only for a run.
     from benchmarks.progress import Progress
+    from benchmarks.store import DB_NAME, RunStore, code_fingerprint, key_of, spec_key
 
     out.mkdir(parents=True, exist_ok=True)
-    progress = Progress(len(specs))
-    with CsvAppender(out / "runs.csv") as csv_file:
+    with RunStore(out, datetime.datetime.now().astimezone().isoformat(timespec="seconds")
+                  ) as store, CsvAppender(out / "runs.csv") as csv_file:
+        if args.rerun:
+            store.clear()
+        if store.made_with(code_fingerprint(args.strict)):
+            sys.stderr.write(f"benchmarks: the runs in {out / DB_NAME} were made by other code "
+                             "or another --strict: all run again\n")
+        stored = store.rows()
+        keys = [spec_key(spec) for spec in specs]
+        rows = {key: stored[key] for key in keys if key in stored}
+        for row in rows.values():
+            csv_file.append(row)
+        todo = [spec for spec, key in zip(specs, keys) if key not in rows]
+        if rows:
+            sys.stderr.write(f"benchmarks: {len(rows)} runs kept from {out / DB_NAME} "
+                             f"(--rerun redoes them), {len(todo)} to run\n")
+        progress = Progress(len(todo))
+
         def finished(done: int, total: int, row) -> None:
+            store.add(row)
             csv_file.append(row)
             progress(done, total, row)
+        options = HarnessOptions(workers=args.workers, strict=args.strict,
+                                 scheduler=args.scheduler)
+        stop, kept = None, len(rows)
         try:
-            return run_all(specs, HarnessOptions(workers=args.workers, strict=args.strict),
-                           finished), None
-        except Interrupted as stop:
-            return stop.rows, stop
+            if todo:
+                rows.update((key_of(row), row) for row in run_all(todo, options, finished))
+        except Interrupted as interrupted:
+            rows.update((key_of(row), row) for row in interrupted.rows)
+            stop = interrupted
         finally:
             progress.close()
+    return [rows[key] for key in keys if key in rows], stop, kept
 
 
 def _meta(args: argparse.Namespace, argv: list[str] | None, include_ompl: bool,
@@ -299,9 +334,16 @@ def main(argv: list[str] | None = None) -> int:
     sys.stderr.write(f"benchmarks: {len(specs)} runs, {args.workers} workers, "
                      f"planners {', '.join(p.id for p in planners)}; load {load_before}\n")
     began = time.perf_counter()
-    rows, stop = _run(specs, args, out)
+    try:
+        rows, stop, kept = _run(specs, args, out)
+    except OSError as error:  # the scheduler cannot be reached
+        if not args.scheduler:
+            raise
+        parser.error(f"--scheduler {args.scheduler}: {error}")
     meta = _meta(args, argv, not args.no_ompl, started, load_before,
                  time.perf_counter() - began, len(rows))
+    if kept:
+        meta["kept"] = f"{kept} runs kept from runs.sqlite (not rerun)"
     if ompl_note:
         meta["note"] = ompl_note
     if stop is not None:

@@ -65,6 +65,8 @@ class HarnessOptions:
     """Seconds past the time limit (plus 10 % of it) before the harness kills a run."""
     strict: bool = False
     """Validate with -strict: a segment cutting a blocked corner is a failure."""
+    scheduler: str | None = None
+    """A Dask scheduler's address: the runs go to its cluster, ``workers`` at a time."""
 
 
 def parse_stats(stderr_text: str) -> dict[str, str]:
@@ -331,7 +333,9 @@ def run_all(specs: list[RunSpec], options: HarnessOptions = HarnessOptions(),
         if progress:
             progress(len(rows), len(ordered), row)
     try:
-        if options.workers <= 1:
+        if options.scheduler:
+            _run_on_dask(ordered, options, finished)
+        elif options.workers <= 1:
             for spec in ordered:
                 finished(spec, run_one(spec, options))
         else:
@@ -357,3 +361,19 @@ def _run_in_workers(ordered: list[RunSpec], options: HarnessOptions,
         _stop_workers(pool, pids)
         raise
     pool.shutdown()
+
+
+def _run_on_dask(ordered: list[RunSpec], options: HarnessOptions,
+                 finished: Callable[[RunSpec, RunRow], None]) -> None:
+    """The runs on the Dask cluster at ``options.scheduler``, ``options.workers`` in
+    flight; Ctrl-C cancels those not started (a run started ends at its hard limit)."""
+    from grading.executors import dask_executor, each_result  # optional: Dask
+
+    with dask_executor(options.scheduler) as executor:
+        for spec, row in each_result(executor, options.workers,
+                                     ((_run_keyed, spec, options) for spec in ordered)):
+            finished(spec, row)
+
+
+def _run_keyed(spec: RunSpec, options: HarnessOptions) -> tuple[RunSpec, RunRow]:
+    return spec, run_one(spec, options)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from typing import Callable, Iterable, Iterator
 
 from grading.config import MODE_FLAGS, GradeConfig
+from grading.executors import dask_executor, each_result
 from grading.runs import build_one, failed_build_row, run_one
 from grading.store import Store
 from planning_core.problem_text import ProblemFormatError, parse_problem
@@ -103,21 +104,11 @@ def _run_all(config: GradeConfig, store: Store, executor, progress: Progress | N
 
 
 def _each_result(executor, jobs: int, tasks: Iterable[tuple]) -> Iterator[dict]:
-    """Each task's result as it finishes, with at most ``jobs`` submitted at once."""
-    local = isinstance(executor, cf.ProcessPoolExecutor)
-    wrap = (lambda task: (_in_local_worker, *task)) if local else (lambda task: task)
-    tasks = iter(tasks)
-    pending: set[cf.Future] = set()
-    while True:
-        for task in tasks:
-            pending.add(executor.submit(*wrap(task)))
-            if len(pending) >= jobs:
-                break
-        if not pending:
-            return
-        done, pending = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
-        for future in done:
-            yield future.result()
+    """Each task's result as it finishes, at most ``jobs`` at once; a local worker runs
+    it through :func:`_in_local_worker`."""
+    if isinstance(executor, cf.ProcessPoolExecutor):
+        tasks = ((_in_local_worker, *task) for task in tasks)
+    return each_result(executor, jobs, tasks)
 
 
 class _Executor:
@@ -126,13 +117,12 @@ class _Executor:
 
     def __init__(self, config: GradeConfig):
         self.config = config
-        self.client = None
+        self.dask = None
 
     def __enter__(self):
         if self.config.scheduler:
-            from distributed import Client  # optional: only for --scheduler
-            self.client = Client(self.config.scheduler)
-            self.executor = self.client.get_executor(pure=False)
+            self.dask = dask_executor(self.config.scheduler)
+            self.executor = self.dask.__enter__()
         else:
             self.executor = cf.ProcessPoolExecutor(self.config.jobs,
                                                    initializer=_worker_start,
@@ -140,10 +130,8 @@ class _Executor:
         return self.executor
 
     def __exit__(self, kind, error, trace):
-        if self.client is not None:
-            self.executor.shutdown(wait=kind is None)
-            self.client.close()
-            return False
+        if self.dask is not None:
+            return self.dask.__exit__(kind, error, trace)
         if kind is not None:  # interrupted: stop the runs in flight, do not wait for them
             stop = getattr(self.executor, "terminate_workers", None)  # Python 3.14
             for process in ([] if stop else list(getattr(self.executor, "_processes",

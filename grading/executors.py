@@ -1,0 +1,44 @@
+"""Running tasks on an executor, shared by rrt-grade and the benchmark harness: a Dask
+cluster's executor for a scheduler address, and a loop that keeps at most ``jobs``
+tasks in flight and yields each result as it finishes."""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+from contextlib import contextmanager
+from typing import Iterable, Iterator
+
+
+@contextmanager
+def dask_executor(address: str):
+    """The executor of the Dask cluster at ``address`` (``tcp://HOST:PORT``); on the
+    way out the tasks not started are cancelled and the client closed."""
+    from distributed import Client  # optional: only for --scheduler
+    client = Client(address)
+    executor = client.get_executor(pure=False)
+    try:
+        yield executor
+    except BaseException:
+        executor.shutdown(wait=False)
+        raise
+    else:
+        executor.shutdown(wait=True)
+    finally:
+        client.close()
+
+
+def each_result(executor, jobs: int, tasks: Iterable[tuple]) -> Iterator:
+    """Each task's result (a task: ``(function, *args)``) as it finishes, with at most
+    ``jobs`` submitted at once."""
+    tasks = iter(tasks)
+    pending: set[cf.Future] = set()
+    while True:
+        for task in tasks:
+            pending.add(executor.submit(*task))
+            if len(pending) >= jobs:
+                break
+        if not pending:
+            return
+        done, pending = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+        for future in done:
+            yield future.result()
