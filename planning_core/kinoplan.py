@@ -8,6 +8,7 @@ with its weight; angle differences wrapped) is at most the tolerance.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Optional
@@ -15,7 +16,8 @@ from typing import Optional
 from planning_core.goal import PLANNER_MARGIN
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
-from planning_core.worlds.continuous import OUTSIDE_BOX, ContinuousWorld
+from planning_core.worlds.continuous import CLEARANCE_MARGIN, OUTSIDE_BOX, ContinuousWorld
+from planning_core.worlds.shapes import segment_gap
 
 State = tuple[float, ...]
 
@@ -167,6 +169,58 @@ def _links_validator(system, world: ContinuousWorld, in_bounds):
         (bx, by), (ex, ey), (tx, ty) = joints(state)
         return segment_free(bx, by, ex, ey) and segment_free(ex, ey, tx, ty)
     return valid
+
+
+def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
+    """``reach(state, step)`` for the arm in a world, else None: given a valid
+    ``state``, how many of the next samples of a straight motion, each ``step``
+    (per angle, unwrapped) further on, are surely valid too.
+
+    From each link's workspace clearance (:func:`segment_clearance`, less a
+    margin far above rounding) and a bound on how far its points move per step:
+    those samples pass the exact test (the validator's) too. A body has none:
+    ``world.body_test``'s free disc does that job.
+    """
+    if world is None or system.occupies != "links":
+        return None
+    values = [abs(v) for o in world.obstacles for v in o.bbox]
+    values += [abs(v) for v in world.box.bbox] if world.box is not None else []
+    values += [abs(system.base_x) + system.l1 + system.l2,
+               abs(system.base_y) + system.l1 + system.l2, 1.0]
+    margin = CLEARANCE_MARGIN * max(values)
+    joints, l1, l2 = system.joints, system.l1, system.l2
+    clearance = segment_clearance(world)
+
+    def reach(state: Sequence[float], step: Sequence[float]) -> int:
+        # Link 1 moves at most l1 |d theta1| per step, link 2 at most that plus
+        # l2 |d theta1 + d theta2| (a chord is no longer than its arc).
+        (bx, by), (ex, ey), (tx, ty) = joints(state)
+        move1 = l1 * abs(step[0])
+        move2 = move1 + l2 * abs(step[0] + step[1])
+        most = 1e9
+        if move2 > 0.0:  # link 2 first: it moves more, and caps link 1's search
+            most = (clearance(ex, ey, tx, ty, margin + most * move2) - margin) / move2
+        if move1 > 0.0:
+            most = min(most, (clearance(bx, by, ex, ey, margin + most * move1) - margin) / move1)
+        return int(max(0.0, min(most, 1e9)))
+    return reach
+
+
+def segment_clearance(world: ContinuousWorld):
+    """``gap(x0, y0, x1, y1, enough)``: the distance from a free closed segment to
+    the world box's sides and the obstacles, or a value of at least ``enough``."""
+    box = world.box.bbox if world.box is not None else (-math.inf,) * 2 + (math.inf,) * 2
+    obstacles = tuple((*o.bbox, o) for o in world.obstacles)
+
+    def gap(x0: float, y0: float, x1: float, y1: float, enough: float) -> float:
+        lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
+        ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
+        best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
+        for ox0, oy0, ox1, oy1, obstacle in obstacles:
+            if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:  # else cannot be nearer
+                best = min(best, segment_gap(obstacle, x0, y0, x1, y1))
+        return best
+    return gap
 
 
 def state_valid(system: FamilySystem, world: Optional[ContinuousWorld],

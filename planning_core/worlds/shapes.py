@@ -455,3 +455,28 @@ def _segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: f
     l2 = ex * ex + ey * ey
     t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
     return math.hypot(wx - t * ex, wy - t * ey)
+
+
+# --- Gaps (distances between disjoint shapes) ---------------------------------------
+
+
+def segment_gap(shape: Union[Rect, Disc, ConvexPolygon],
+                x0: float, y0: float, x1: float, y1: float) -> float:
+    """Distance from the closed segment to the closed ``shape`` (a Disc, Rect or
+    ConvexPolygon) that it does not touch. Rounded as floats are: keep a margin."""
+    if isinstance(shape, Disc):
+        return _segment_distance(x0, y0, x1, y1, shape.cx, shape.cy) - shape.r
+    if isinstance(shape, Rect):
+        corners = shape.corners
+        rx0, ry0, rx1, ry1 = shape.bbox
+        best = min(math.hypot(max(rx0 - x0, 0.0, x0 - rx1), max(ry0 - y0, 0.0, y0 - ry1)),
+                   math.hypot(max(rx0 - x1, 0.0, x1 - rx1), max(ry0 - y1, 0.0, y1 - ry1)))
+    else:
+        corners = shape.points
+        best = min(point_distance(shape, x0, y0), point_distance(shape, x1, y1))
+    # Two disjoint convex sets are nearest at a vertex of one of them.
+    for vx, vy in corners:
+        d = _segment_distance(x0, y0, x1, y1, vx, vy)
+        if d < best:
+            best = d
+    return best

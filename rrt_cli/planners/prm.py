@@ -40,6 +40,9 @@ from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, path_length, st
 START, GOAL = 0, 1  # the roadmap's first two vertices
 LAZY_RETRY_GROWTH = 1.1
 """A lazy roadmap whose query failed is queried again once it has grown this much."""
+LAZY_CHECK_AROUND_AFTER = 32
+"""From this A* run of one query on, a lazy roadmap also checks every edge at a blocked
+step's ends (``Roadmap.check_around``; why: docs/planners-geometric-family.md)."""
 
 
 @dataclass(frozen=True)
@@ -140,6 +143,19 @@ class Roadmap:
             if not self.lazy:
                 break
         return blocked
+
+    def check_around(self, vertex: int) -> None:
+        """Check each edge at ``vertex`` not checked yet (from it), dropping the
+        blocked ones: where a path's step was blocked, the next path would likely
+        try a neighbouring edge through the same obstacle (fewer A* runs)."""
+        first_hit, states, checked = self.lines.first_hit, self.states, self.checked
+        for other, _ in list(self.adjacency[vertex]):
+            if (vertex, other) in checked or (other, vertex) in checked:
+                continue
+            if first_hit(states[vertex], states[other]) is None:
+                checked.add((vertex, other))
+            else:
+                self.remove_edge(vertex, other)
 
     def shortest_path(self, source: int, target: int) -> list[int] | None:
         """A* with the metric to ``target`` as the heuristic."""
@@ -252,7 +268,9 @@ def _query(roadmap: Roadmap, stop: StopCondition) -> list[int] | None:
     are travelled; an edge that fails that way (never checked: a lazy roadmap's;
     a rounding tie at a cell's edge; samples that differ the other way round) is
     dropped and the search runs again, until the time is up."""
+    runs = 0
     while not stop.time_is_up():
+        runs += 1
         path = roadmap.shortest_path(START, GOAL)
         if path is None:
             return None
@@ -261,6 +279,9 @@ def _query(roadmap: Roadmap, stop: StopCondition) -> list[int] | None:
             return path
         for a, b in blocked:
             roadmap.remove_edge(a, b)
+        if roadmap.lazy and runs >= LAZY_CHECK_AROUND_AFTER:
+            for vertex in {v for step in blocked for v in step}:
+                roadmap.check_around(vertex)
     return None
 
 

@@ -20,7 +20,8 @@ The paper draws targets uniformly; here, by default, 90% come from the trees'
 frontier (free cells without a node beside cells with one,
 :mod:`planning_core.worlds.grid_frontier`), which in a maze is what keeps the trees
 advancing: see ``RRTConnectParams.frontier_targets`` (0 restores the paper).
-The geometric family has no frontier: its targets are uniform valid configurations.
+The geometric family has no frontier: its targets are uniform configurations, valid
+or not (``kinoplan_free_space_targets``).
 
 The tree section of the output lists both trees' edges, goal-tree edges
 pointing toward the goal.
@@ -33,6 +34,7 @@ import time
 from dataclasses import dataclass
 from enum import Enum
 
+from planning_core.geometric_space_information import GeometricSpaceInformation
 from planning_core.space_information import SpaceInformation
 from planning_core.worlds.grid_frontier import FrontierCells
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
@@ -59,6 +61,9 @@ class RRTConnectParams:
     """Draw random targets from the free cells only (uniform over free space)
     instead of the whole map: on crowded maps and mazes most whole-map targets
     lie inside walls and only feed extensions that stop at the wall."""
+    kinoplan_free_space_targets: bool = False
+    """``free_space_targets`` for the geometric family: off, uniform targets valid or
+    not, as OMPL's (5x faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
     frontier_targets: float = 0.9
     """Share of the random targets drawn from the trees' frontier (free cells with
     no node beside covered ones, where the world offers it); 0 gives the published RRT-Connect."""
@@ -133,7 +138,8 @@ class _Grower:
 def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
                     frontier: FrontierCells | None, stop: StopCondition):
     """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
-    if params.free_space_targets:
+    family = isinstance(si, GeometricSpaceInformation)
+    if params.kinoplan_free_space_targets if family else params.free_space_targets:
         draw_uniform_target = straight_lines(si).free_sampler(rng, stop.time_is_up)
     else:
         def draw_uniform_target():

@@ -35,7 +35,18 @@ rect 0.9 0 1.1 1.4
 start x 0.3 y 0.3 theta 0
 goal x 1.7 y 0.3 theta 0 within 0.05
 """
-SMALL = {"arm": ARM, "body": BODY}
+# Every obstacle kind, close to the arm's reach, for the clearance skips of its motion check.
+ARM_SHAPES = """kinoplan 1
+system arm2
+param base_x 0.1
+world -2.2 -2.2 2.05 2.2
+rect 0.6 0.6 1.3 1.3
+circle -1.3 0.5 0.25
+polygon -0.5 -1.9 0.4 -1.6 0.1 -1.2
+start theta1 -0.5 theta2 -0.5
+goal theta1 1.5 theta2 1.5 within 0.01
+"""
+SMALL = {"arm": ARM, "body": BODY, "arm-shapes": ARM_SHAPES}
 
 
 def geometric_si(text: str):
@@ -73,19 +84,29 @@ def test_planner_solves_a_small_geometric_problem_and_the_validator_accepts(plan
 def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem):
     si = geometric_si(SMALL[problem])
     rng = random.Random(5)
-    blocked = 0
-    for _ in range(200):
+    blocked = tested = samples_total = 0
+    valid = si.is_valid
+
+    def counted(state):
+        nonlocal tested
+        tested += 1
+        return valid(state)
+    for _ in range(300):
         a, b = si.free_sampler(rng)(), si.sample_target(rng)
         samples = si.system.motion_samples(a, b)
-        first_bad = next((k for k in range(1, len(samples)) if not si.is_valid(samples[k])),
-                         None)
+        first_bad = next((k for k in range(1, len(samples)) if not valid(samples[k])), None)
+        si.is_valid = counted
         hit = si.first_hit(a, b)
+        si.is_valid = valid
+        samples_total += len(samples) - 1
         if first_bad is None:
             assert hit is None
         else:
             blocked += 1
             assert hit is not None and hit.fraction == first_bad / (len(samples) - 1)
-    assert 10 < blocked < 190
+    assert 10 < blocked < 290
+    if problem.startswith("arm"):  # the clearance skips most samples
+        assert 0 < tested < samples_total / 3
 
 
 def test_a_partial_extension_ends_on_a_motion_that_is_free_at_its_own_samples():
@@ -101,6 +122,34 @@ def test_a_partial_extension_ends_on_a_motion_that_is_free_at_its_own_samples():
             assert si.is_valid(step[0]) and si.first_hit(a, step[0]) is None
             assert si.distance(a, step[0]) < si.distance(a, target)
     assert partial > 10
+
+
+def test_check_around_keeps_the_free_edges_at_a_vertex_and_drops_the_blocked_ones():
+    from rrt_cli.planners.prm import Roadmap
+    si = geometric_si(BODY)
+    roadmap, draw = Roadmap(si), si.free_sampler(random.Random(3))
+    for _ in range(60):
+        roadmap.add_vertex(draw(), neighbors=12)
+    vertex = max(range(len(roadmap)), key=lambda v: len(roadmap.adjacency[v]))
+    before = {other for other, _ in roadmap.adjacency[vertex]}
+    roadmap.check_around(vertex)
+    after = {other for other, _ in roadmap.adjacency[vertex]}
+    state = roadmap.states[vertex]
+    assert after and after < before  # the wall blocks some
+    for other in before:
+        free = si.first_hit(state, roadmap.states[other]) is None
+        assert (other in after) == free
+        assert free == ((vertex, other) in roadmap.checked)
+
+
+def test_rrtconnect_targets_the_family_with_uniform_states_valid_or_not():
+    from rrt_cli.planners import rrtconnect
+    si = geometric_si(BODY)
+    si.free_sampler = None  # not asked for by default
+    assert_solved_and_valid(si, solve("rrtconnect", si, seed=1))
+    with pytest.raises(TypeError):
+        solve("rrtconnect", si, seed=1,
+              params=rrtconnect.Params(kinoplan_free_space_targets=True))
 
 
 def test_registry_geometric_kinoplan_systems_have_four_planners():
