@@ -169,17 +169,22 @@ def table_rows(vehicle: str, problem: Path, runs) -> list[str]:
     return rows
 
 
-def kernel_times(seed: int = 1, calls: int = 2000, repeats: int = 7) -> tuple[float, float]:
+def kernel_times(seed: int = 1, calls: int = 2000,
+                 repeats: int = 7) -> tuple[float, float, float]:
     """In this process: median microseconds per slice of ``propagate_while`` over an
-    open map, and per quadtree ``nearest`` query among 5000 uniform points."""
+    open map, per quadtree ``nearest`` query among 5000 uniform points, and per
+    control tried by the ship RRT's steering (sample, propagate, closeness)."""
     import random
     import time
     from planning_core.nearest.quadtree import QuadtreeNearest
     from planning_core.problem import Problem
+    from planning_core.space_information import grid_space_information
     from planning_core.systems.spaceship import SLICES, SYSTEM
-    from planning_core.worlds.grid import GridWorld
+    from rrt_cli.planners.steering import ControlSamplingSteering
     side = 100
-    world = GridWorld(Problem(side, side, bytes(side * side), (1.0, 1.0), (99.0, 99.0)))
+    si = grid_space_information(
+        Problem(side, side, bytes(side * side), (1.0, 1.0), (99.0, 99.0)), "spaceship")
+    world = si.world
     rng = random.Random(seed)
     starts = [(rng.uniform(40, 60), rng.uniform(40, 60), rng.uniform(-1, 1), rng.uniform(-1, 1))
               for _ in range(calls)]
@@ -201,12 +206,14 @@ def kernel_times(seed: int = 1, calls: int = 2000, repeats: int = 7) -> tuple[fl
     slice_us = per_call(lambda: [propagate(s, c, world) for s, c in zip(starts, controls)],
                         calls * SLICES)
     query_us = per_call(lambda: [nearest(x, y) for x, y in queries], calls)
-    return slice_us, query_us
+    extend = ControlSamplingSteering(si, 10).extend
+    steer_us = per_call(lambda: [extend(s, q, rng) for s, q in zip(starts, queries)], calls * 10)
+    return slice_us, query_us, steer_us
 
 
 def kernels(rounds: int) -> None:
     """Kernel times compiled and interpreted, each in its own process, alternating."""
-    times: dict[str, list[tuple[float, float]]] = {mode: [] for mode in MODES}
+    times: dict[str, list[tuple[float, ...]]] = {mode: [] for mode in MODES}
     for turn in range(rounds):
         for mode in MODES if turn % 2 == 0 else MODES[::-1]:
             env = dict(os.environ, PYTHONPATH=str(ROOT), RRT_INTERPRETED=(
@@ -218,13 +225,14 @@ def kernels(rounds: int) -> None:
                                  env=env, cwd=ROOT, check=True).stdout.split()
             if out[0] != mode:
                 raise SystemExit(f"bench_compiled: asked for {mode}, ran {out[0]}")
-            times[mode].append((float(out[1]), float(out[2])))
+            times[mode].append(tuple(float(value) for value in out[1:4]))
     print(f"# kernels: medians of {rounds} processes per mode (microseconds)")
-    print("| mode | propagate_while, per slice | quadtree nearest, 5000 points |")
-    print("|---|---:|---:|")
+    print("| mode | propagate_while, per slice | quadtree nearest, 5000 points "
+          "| steering, per control |")
+    print("|---|---:|---:|---:|")
     for mode, values in times.items():
-        print(f"| {mode} | {statistics.median(v[0] for v in values):.3f} "
-              f"| {statistics.median(v[1] for v in values):.3f} |")
+        print(f"| {mode} | " + " | ".join(f"{statistics.median(v[k] for v in values):.3f}"
+                                         for k in range(3)) + " |")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -23,6 +23,12 @@ MODULES = (
     "planning_core.worlds.grid_frontier",
     "planning_core.worlds.grid_cells",
     "planning_core.nearest.quadtree",
+    "rrt_cli.planners.steering",
+    "rrt_cli.planners.rrt",
+    "rrt_cli.planners.kpiece",
+    "rrt_cli.planners.rgrrt",
+    "rrt_cli.planners.blossom",
+    "planning_core.nearest.kdtree",
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 

@@ -13,13 +13,17 @@ may walk every cell of a big map takes an optional ``stop`` and raises
 from __future__ import annotations
 
 import random
-from typing import Optional, Sequence
+from typing import Any, Optional, Sequence
 
 from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
+
+AnySpaceInformation = Any
+"""What planners annotate ``si`` with: any SpaceInformation (grid, kinoplan, geometric),
+not a class, so a compiled planner (planning_core.compiled) checks none at run time."""
 
 
 class SpaceInformation:

@@ -66,7 +66,9 @@ def _compile(work: Path) -> None:
                           cwd=ROOT, env=env, capture_output=True, text=True)
     (work / "build.log").write_text(done.stdout + done.stderr)
     if done.returncode != 0:
-        tail = "\n".join((done.stdout + done.stderr).splitlines()[-30:])
+        lines = (done.stdout + done.stderr).splitlines()
+        errors = [line for line in lines if ": error:" in line]  # mypy's notes can be many
+        tail = "\n".join((errors or lines)[-30:])
         raise RuntimeError(f"mypyc build failed:\n{tail}")
 
 

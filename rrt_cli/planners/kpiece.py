@@ -63,7 +63,7 @@ import sys
 from dataclasses import dataclass
 
 from planning_core.interrupt import Stop
-from planning_core.space_information import SpaceInformation
+from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
 
@@ -265,7 +265,7 @@ def _bisect(items: list, item) -> int:
 class _Search:
     """One KPIECE1 run: the tree, the projection grid and the close-to-goal motions."""
 
-    def __init__(self, si: SpaceInformation, rng: random.Random, params: KPIECEParams,
+    def __init__(self, si: AnySpaceInformation, rng: random.Random, params: KPIECEParams,
                  stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
         self.project = _make_projection(si, params)
@@ -381,7 +381,7 @@ class _Search:
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
           params: KPIECEParams = KPIECEParams()) -> PlanResult:
     return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "KPIECE1")
 
@@ -409,7 +409,7 @@ def _projection(system, inverse_cell: float, velocity_cell_size: float | None):
                           floor(state[vy] * inverse_velocity))
 
 
-def _steer_to_goal(si: SpaceInformation, state, goal_distance, tries: int,
+def _steer_to_goal(si: AnySpaceInformation, state, goal_distance, tries: int,
                    rng: random.Random):
     """The valid random control, of ``tries``, whose one step ends with the
     lowest ``goal_distance``."""
@@ -429,10 +429,12 @@ def _select_cell(grid: _CellGrid, rng: random.Random, border_fraction: float) ->
     exterior_share = grid.exterior_count / len(grid.cells)
     exterior = rng.random() < max(border_fraction, exterior_share)
     cell = grid.top(exterior) or grid.top(not exterior)
+    assert cell is not None, "a grid with cells has a top cell"
     if cell.score < sys.float_info.epsilon:
         # Scores only shrink; before they underflow, lift them all (as OMPL does).
         for other in grid.cells.values():
             other.score += 1.0 + math.log(other.created)
         grid.rebuild()
         cell = grid.top(exterior) or grid.top(not exterior)
+        assert cell is not None
     return cell

@@ -60,9 +60,10 @@ from __future__ import annotations
 import heapq
 import random
 from dataclasses import dataclass
+from typing import Any
 
 from planning_core.interrupt import Stop
-from planning_core.space_information import SpaceInformation
+from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
 
@@ -121,7 +122,7 @@ Params = RGRRTParams
 class _ReachableSets:
     """Every node's reachable states, indexed like the quadtree of their positions."""
 
-    def __init__(self, si):
+    def __init__(self, si: Any) -> None:
         self.index = si.new_nearest()
         self.closeness = si.closeness
         self.states: list[tuple[float, ...]] = []
@@ -159,14 +160,14 @@ class _ReachableSets:
 class _Search:
     """One RG-RRT run: the tree, the reachable sets and the best-first queue."""
 
-    def __init__(self, si: SpaceInformation, rng: random.Random, params: RGRRTParams,
+    def __init__(self, si: AnySpaceInformation, rng: random.Random, params: RGRRTParams,
                  stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
         self.fixed_controls = _fixed_controls(si, params)
         self.tree = MotionTree(si.start)
         self.reach = _ReachableSets(si)
         self.iterations = 0
-        along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
+        along: Any = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
         self.guided = along is not None
         # Every reachable state by its distance to the goal; used ones are skipped
         # when they come to the top.
@@ -277,7 +278,7 @@ class _Search:
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
           params: RGRRTParams = RGRRTParams()) -> PlanResult:
     return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "RG-RRT")
 
@@ -297,7 +298,7 @@ def _fixed_controls(si, params: RGRRTParams) -> list:
 _BLOCKED_BRAKING_PENALTY = 1e6
 
 
-def stopping_point_key(along, si: SpaceInformation):
+def stopping_point_key(along, si: AnySpaceInformation):
     """State -> distance to the goal along free space of where full braking would
     stop it (:meth:`stopping_point` of the system)."""
     stopping_point, first_hit = si.system.stopping_point, si.first_hit

@@ -18,7 +18,7 @@ import random
 import time
 from dataclasses import dataclass
 
-from planning_core.space_information import SpaceInformation
+from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
@@ -46,7 +46,7 @@ class RRTParams:
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
+def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
     began = time.perf_counter()
     if si.duration is not None:  # a kinoplan system

@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import math
 import random
+from typing import Any, Callable
 
-from planning_core.space_information import SpaceInformation
+from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.point_common import straight_lines
 
 
 class StraightLineSteering:
-    def __init__(self, si: SpaceInformation, partial_extension: bool, min_extension: float,
+    def __init__(self, si: AnySpaceInformation, partial_extension: bool, min_extension: float,
                  wall_clearance: float):
         lines = straight_lines(si)
         self.first_hit, self.can_end_at = lines.first_hit, lines.can_end_at
@@ -51,29 +52,31 @@ class StraightLineSteering:
 
 
 class ControlSamplingSteering:
-    def __init__(self, si: SpaceInformation, controls_per_extension: int):
-        self.si = si
+    def __init__(self, si: AnySpaceInformation, controls_per_extension: int):
         self.controls_per_extension = controls_per_extension
+        # Bound once: this loop is the kinodynamic RRT's hot path (compiled, hot-paths.md).
+        self.sample_control: Callable[[random.Random], Any] = si.sample_control
+        self.propagate_valid: Callable[[Any, Any], Any] = si.propagate_valid
+        self.closeness: Callable[[Any, Any], float] = si.closeness
 
     def extend(self, state: tuple[float, ...], target: tuple[float, ...],
-               rng: random.Random):
+               rng: random.Random) -> Any:
         best = None
         best_d2 = math.inf
-        si = self.si
-        sample_control, propagate_valid, closeness = (si.sample_control, si.propagate_valid,
-                                                      si.closeness)
+        sample_control, propagate_valid, closeness = (self.sample_control,
+                                                      self.propagate_valid, self.closeness)
         for _ in range(self.controls_per_extension):
             control = sample_control(rng)
             end = propagate_valid(state, control)
             if end is None:
                 continue
-            d2 = closeness(end, target)
+            d2: float = closeness(end, target)
             if d2 < best_d2:
                 best, best_d2 = (end, control), d2
         return best
 
 
-def make_steering(si: SpaceInformation, params):
+def make_steering(si: AnySpaceInformation, params):
     """The steering RRT-like planners use for ``si``'s kind of system."""
     if si.system.kinodynamic:
         return ControlSamplingSteering(si, params.controls_per_extension)

@@ -1,0 +1,59 @@
+"""The compiled planners (issue 19): no interpreted class derives from a compiled
+one (mypyc refuses it at run time), and a compiled family run prints the bytes the
+interpreted one does, an answer the validator accepts. (Grid outputs: tests/golden.)"""
+
+from __future__ import annotations
+
+import ast
+
+import pytest
+
+from planning_core import compiled
+from planning_core.kinoplan_text import parse_kinoplan
+from planning_core.space_information import kinoplan_space_information
+from tests.conftest import ROOT, run_planner
+from tests.test_compiled import run_planner_compiled
+from validator.checks import validate_plan
+
+PACKAGES = ("planning_core", "rrt_cli", "validator", "benchmarks")
+SMALL_CAR2 = ("kinoplan 1\nsystem car2\nworld 0 0 20 20\nrect 8 0 9 12\n"
+              "start x 3 y 5 theta 0 v 0\ngoal x 14 y 5 within 2\n")
+
+
+def _classes(path) -> list[ast.ClassDef]:
+    tree = ast.parse(path.read_text())
+    return [node for node in ast.walk(tree) if isinstance(node, ast.ClassDef)]
+
+
+def test_no_interpreted_class_derives_from_a_compiled_class():
+    compiled_classes = {(module, node.name) for module in compiled.MODULES
+                        for node in _classes(ROOT / compiled.source_path(module))}
+    compiled_paths = {compiled.source_path(module) for module in compiled.MODULES}
+    offenders = []
+    for package in PACKAGES:
+        for path in (ROOT / package).rglob("*.py"):
+            if str(path.relative_to(ROOT)) in compiled_paths:
+                continue
+            tree = ast.parse(path.read_text())
+            imported = {alias.asname or alias.name: (node.module, alias.name)
+                        for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
+                        for alias in node.names}
+            offenders += [f"{path.relative_to(ROOT)}: {node.name}({base.id})"
+                          for node in ast.walk(tree) if isinstance(node, ast.ClassDef)
+                          for base in node.bases
+                          if isinstance(base, ast.Name) and imported.get(base.id) in compiled_classes]
+    assert offenders == []
+
+
+@pytest.mark.parametrize("planner", ["rrt", pytest.param("kpiece", marks=pytest.mark.slow),
+                                     pytest.param("rgrrt", marks=pytest.mark.slow),
+                                     pytest.param("blossom", marks=pytest.mark.slow)])
+def test_a_compiled_family_run_prints_the_interpreted_bytes(planner):
+    args = ["-planner", planner, "-seed", "2"]
+    fast = run_planner_compiled(args, SMALL_CAR2)
+    assert fast.returncode == 0, fast.stderr
+    slow = run_planner(args, SMALL_CAR2)
+    assert fast.stdout == slow.stdout
+    si = kinoplan_space_information(parse_kinoplan(SMALL_CAR2))
+    report = validate_plan(si, fast.stdout.decode())
+    assert report.valid, report.first_failure
