@@ -33,6 +33,8 @@ _MIN_GAIN = 1e-9
 
 @dataclass(frozen=True)
 class SmoothingParams:
+    """How ``-smooth`` shortens a path."""
+
     shortcut_attempts: int = 200
     """Random shortcuts tried (pass 2); 0 keeps only the vertex pruning."""
     max_failures_in_a_row: int = 60

@@ -25,6 +25,8 @@ class PointVariables:
 
 @dataclass(frozen=True)
 class PointVehicle(PointVariables):
+    """The point vehicle of SPEC 1-2: state (x, y), straight segments, no controls."""
+
     name: str = "point"
     """The name the registry and the validator's report use."""
 

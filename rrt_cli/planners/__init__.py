@@ -23,6 +23,8 @@ def system_kind(system) -> str:
 
 @dataclass(frozen=True)
 class PlannerEntry:
+    """A planner's registry line: its module, what it plans for, one line about it."""
+
     module: str
     kinds: frozenset
     summary: str

@@ -50,6 +50,8 @@ class StopCondition:
 
 @dataclass(frozen=True)
 class PlanStats:
+    """What a planning run did: iterations, tree size, time (for -stats)."""
+
     iterations: int
     tree_nodes: int
     planning_seconds: float

@@ -27,6 +27,8 @@ from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 @dataclass(frozen=True)
 class BlossomParams:
+    """Blossom RRT's settings (``-planner blossom``)."""
+
     b: int = 5
     """Random controls tried from the nearest node per iteration (seed 004: 1, 3, 5)."""
     goal_bias: float = 0.05

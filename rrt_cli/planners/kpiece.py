@@ -77,6 +77,8 @@ _KEEP_UNINTERESTING = 0.05
 
 @dataclass(frozen=True)
 class KPIECEParams:
+    """KPIECE1's settings (``-planner kpiece``)."""
+
     cell_size: float | None = None
     """Side of a projection cell in map units. None: half a map cell on maps under
     20 cells a side, one map cell (a maze corridor's width) on larger ones."""

@@ -47,6 +47,8 @@ step's ends (``Roadmap.check_around``; why: docs/planners-geometric-family.md)."
 
 @dataclass(frozen=True)
 class PRMParams:
+    """PRM's settings (``-planner prm``)."""
+
     neighbors: int = 10
     """k: each new vertex tries to connect to its k nearest vertices (OMPL's default, 10)."""
     min_vertices: int = 0

@@ -40,6 +40,8 @@ DIMENSION = 2
 
 @dataclass(frozen=True)
 class PRMStarParams:
+    """PRM*'s settings (``-planner prmstar``)."""
+
     growth_after_connection: float = 2.0
     """After an answer with n vertices, grow to this many times n and answer
     again (1.0: answer at once)."""

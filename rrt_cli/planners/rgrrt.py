@@ -70,6 +70,8 @@ from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 @dataclass(frozen=True)
 class RGRRTParams:
+    """RG-RRT's settings (``-planner rgrrt``)."""
+
     goal_bias: float = 0.05
     """Probability that the random target is the goal (as RRT's, SPEC 2)."""
     guided_share: float = 0.2

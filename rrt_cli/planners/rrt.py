@@ -26,6 +26,8 @@ from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 @dataclass(frozen=True)
 class RRTParams:
+    """RRT's settings (``-planner rrt``)."""
+
     goal_bias: float = 0.05
     """Probability that the random target is the goal (SPEC 2: 0.05)."""
     controls_per_extension: int = 10

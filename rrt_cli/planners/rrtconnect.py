@@ -45,6 +45,8 @@ from rrt_cli.planners.tree import MotionTree
 
 @dataclass(frozen=True)
 class RRTConnectParams:
+    """RRT-Connect's settings (``-planner rrtconnect``)."""
+
     max_step: float = 0.0
     """Longest single extension (map units; the metric for the family); 0: unlimited (straight to the
     target when the segment is free, as the course's RRT steers). OMPL's "range"."""

@@ -88,8 +88,6 @@ def test_run_sh_imports_neither_argparse_nor_smoothing():
     assert not {"argparse", "rrt_cli.smoothing"} & run_sh_start_loads()
 
 
-@pytest.mark.xfail(strict=True, reason="dataclasses without a docstring (PlannerEntry, "
-                   "PlanStats, RRTParams) make dataclasses call inspect.signature")
 def test_run_sh_imports_neither_inspect_nor_copy():
     assert not {"ast", "weakref"} & run_sh_start_loads()  # what inspect and copy import
 
