@@ -21,8 +21,8 @@ import random
 import time
 from dataclasses import dataclass
 
-from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.tree import MotionTree, start_in_goal
+from rrt_cli.planners import rrt
+from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 
 
 @dataclass(frozen=True)
@@ -55,31 +55,8 @@ def solve(si, stop: StopCondition, rng: random.Random,
     if not system.kinodynamic or not hasattr(system, "kmax"):
         raise ValueError("blossom plans for the kinodynamic family systems only")
     began = time.perf_counter()
-    tree = MotionTree(si.start)
-    index = si.new_nearest()
-    index.add(si.start)
-    goal = si.goal
-    solved = start_in_goal(si, tree, began)
-    if solved is not None:
-        return solved
     grow = _blossom(si, params.b, system.kmin, params.kmax or system.kmax)
-    goal_target, sample_target, states = si.goal_target, si.sample_target, tree.states
-    iterations = 0
-    while True:
-        limit = stop.status(iterations)
-        if limit is not None:
-            return tree.result(system, limit, None, iterations, began)
-        iterations += 1
-        target = goal_target(rng) if rng.random() < params.goal_bias else sample_target(rng)
-        near = index.nearest(target)
-        step = grow(states[near], target, rng)
-        if step is None:
-            continue
-        node = tree.add(near, *step)
-        index.add(step[0])
-        if goal.reached(step[0]):
-            return tree.result(system, PlanStatus.SOLVED, node, iterations, began)
-
+    return rrt.grow(si, stop, rng, grow, params.goal_bias, began)
 
 def _blossom(si, b: int, kmin: int, kmax: int):
     """``grow(state, target, rng) -> (end, control) | None``: the best of ``b``

@@ -17,6 +17,7 @@ import dataclasses
 import random
 import time
 from dataclasses import dataclass
+from typing import Callable
 
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
@@ -54,6 +55,14 @@ def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
     if si.duration is not None:  # a kinoplan system
         params = dataclasses.replace(params, controls_per_extension=params.kinoplan_controls)
     steering = make_steering(si, params)
+    return grow(si, stop, rng, steering.extend, params.goal_bias, began)
+
+
+def grow(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
+         extend: Callable, goal_bias: float, began: float) -> PlanResult:
+    """RRT's loop with ``extend(state, target, rng) -> (state, control) | None`` as
+    its steering, until a node reaches the goal or ``stop`` says so (blossom RRT is
+    this loop with its own steering)."""
     goal = si.goal
     tree = MotionTree(si.start)
     index = si.new_nearest()
@@ -67,19 +76,16 @@ def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
         return tree.result(system, PlanStatus.UNREACHABLE, None, 0, began,
                            "no chain of free cells joins the start and the goal")
 
-    goal_target = si.goal_target
+    goal_target, sample_target, states = si.goal_target, si.sample_target, tree.states
     iterations = 0
     while True:
         limit = stop.status(iterations)
         if limit is not None:
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
-        if rng.random() < params.goal_bias:
-            target = goal_target(rng)
-        else:
-            target = si.sample_target(rng)
+        target = goal_target(rng) if rng.random() < goal_bias else sample_target(rng)
         near = index.nearest(target)
-        step = steering.extend(tree.states[near], target, rng)
+        step = extend(states[near], target, rng)
         if step is None:
             continue
         new_state, control = step
@@ -87,6 +93,5 @@ def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
         index.add(new_state)
         if goal.reached(new_state):
             return tree.result(system, PlanStatus.SOLVED, node, iterations, began)
-
 
 Params = RRTParams
