@@ -48,6 +48,8 @@ class MotionHit:
 class GeometricSpaceInformation(KinoplanSpaceInformation):
     """A geometric family system in its continuous world, for straight-line planners."""
 
+    answers_straight_lines = True
+    """It answers the straight-line planners' questions itself (``point_common.straight_lines``)."""
     rechecks_prefix = True
     """A motion cut short is sampled anew (its samples are not the longer one's)."""
     lazy_edges = True

@@ -16,7 +16,6 @@ import math
 import random
 from typing import Sequence
 
-from planning_core.geometric_space_information import GeometricSpaceInformation
 from planning_core.interrupt import Stop
 from planning_core.worlds.grid import GridWorld
 
@@ -35,6 +34,7 @@ class GridLines:
     """The point vehicle's straight lines on a grid (a grid SpaceInformation, or
     only its world for the smoother's callers)."""
 
+    answers_straight_lines = True
     dimension = 2
     rechecks_prefix = False
     """The cell walk is exact: a prefix of a free segment is free."""
@@ -100,7 +100,7 @@ class PlaneIndex:
 def straight_lines(where):
     """What answers the straight-line questions for ``where``: a geometric family
     SpaceInformation itself; a grid SpaceInformation or GridWorld through :class:`GridLines`."""
-    if isinstance(where, (GeometricSpaceInformation, GridLines)):
+    if getattr(where, "answers_straight_lines", False):
         return where
     if isinstance(where, GridWorld):
         return GridLines(where)

@@ -34,7 +34,6 @@ import time
 from dataclasses import dataclass
 from enum import Enum
 
-from planning_core.geometric_space_information import GeometricSpaceInformation
 from planning_core.space_information import SpaceInformation
 from planning_core.worlds.grid_frontier import FrontierCells
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
@@ -140,7 +139,7 @@ class _Grower:
 def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
                     frontier: FrontierCells | None, stop: StopCondition):
     """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
-    family = isinstance(si, GeometricSpaceInformation)
+    family = getattr(si, "answers_straight_lines", False)  # a geometric family system
     if params.kinoplan_free_space_targets if family else params.free_space_targets:
         draw_uniform_target = straight_lines(si).free_sampler(rng, stop.time_is_up)
     else:

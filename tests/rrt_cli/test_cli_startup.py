@@ -67,7 +67,8 @@ def test_both_parsers_give_the_same_answer_and_it_validates(monkeypatch, flags):
 PROBE = """
 import atexit, sys
 def report():
-    names = ("argparse", "rrt_cli.smoothing", "ast", "weakref")
+    names = ("argparse", "rrt_cli.smoothing", "ast", "weakref", "planning_core.kinoplan",
+             "planning_core.geometric_space_information", "planning_core.nearest.kdtree")
     sys.stderr.write("loaded: %s\\n" % ",".join(n for n in names if n in sys.modules))
 atexit.register(report)
 """
@@ -86,6 +87,11 @@ def run_sh_start_loads() -> set[str]:
 
 def test_run_sh_imports_neither_argparse_nor_smoothing():
     assert not {"argparse", "rrt_cli.smoothing"} & run_sh_start_loads()
+
+
+def test_run_sh_imports_nothing_of_the_family_for_a_grid_problem():
+    assert not {"planning_core.kinoplan", "planning_core.geometric_space_information",
+                "planning_core.nearest.kdtree"} & run_sh_start_loads()
 
 
 def test_run_sh_imports_neither_inspect_nor_copy():
