@@ -25,9 +25,10 @@ import tempfile
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Callable, Iterable
+from typing import IO, Callable, Iterable, Iterator
 
 from benchmarks.catalog import ROOT, PlannerChoice
 from benchmarks.generator import family_of, problem_id
@@ -165,23 +166,28 @@ def _run_planner(spec: RunSpec, hard_limit: float) -> _Finished:
             tempfile.TemporaryFile() as err, tempfile.TemporaryDirectory() as scratch:
         report_path = os.path.join(scratch, "launch.txt")
         began = time.perf_counter()
-        process = subprocess.Popen([sys.executable, "-S", "-I", str(LAUNCHER), report_path,
-                                    *command], stdin=stdin, stdout=out, stderr=err,
-                                   env=_planner_env(), cwd=ROOT, start_new_session=True)
-        # A daemon: a timer left running must never hold up the interpreter's exit.
-        timer = threading.Timer(hard_limit, _kill_group, (process.pid, killed))
-        timer.daemon = True
+        process = timer = None
         try:
-            # Inside the try: Ctrl-C or SIGTERM may arrive while the timer starts.
-            _RUNNING.add(process.pid)
-            timer.start()
+            with _signals_held():  # until the planner is known, so it can be killed
+                process = subprocess.Popen(
+                    [sys.executable, "-S", "-I", str(LAUNCHER), report_path, *command],
+                    stdin=stdin, stdout=out, stderr=err, env=_planner_env(), cwd=ROOT,
+                    start_new_session=True)
+                _RUNNING.add(process.pid)
+                # A daemon: a timer left running must never hold up the interpreter's exit.
+                timer = threading.Timer(hard_limit, _kill_group, (process.pid, killed))
+                timer.daemon = True
+                timer.start()
             _, wait_status, _ = os.wait4(process.pid, 0)
         except BaseException:  # Ctrl-C or SIGTERM: the planner must not outlive us
-            _kill_group(process.pid, killed)
+            if process is not None:
+                _kill_group(process.pid, killed)
             raise
         finally:
-            _RUNNING.discard(process.pid)
-            timer.cancel()
+            if process is not None:
+                _RUNNING.discard(process.pid)
+            if timer is not None:
+                timer.cancel()
         process_seconds = time.perf_counter() - began
         exit_status = os.waitstatus_to_exitcode(wait_status)
         process.returncode = exit_status  # reaped here; keep Popen from waiting again
@@ -191,6 +197,26 @@ def _run_planner(spec: RunSpec, hard_limit: float) -> _Finished:
             exit_status, process_seconds, peak_memory_mb = launched
         return _Finished(exit_status, process_seconds, peak_memory_mb, _read_text(out),
                          _read_text(err), bool(killed))
+
+
+@contextmanager
+def _signals_held() -> Iterator[None]:
+    """Ctrl-C and SIGTERM arriving inside the block take effect at its end. Between a
+    planner's start and its registration in ``_RUNNING`` they would leave it running
+    (their handlers run only in the main thread; elsewhere this holds nothing)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held: list[int] = []
+    previous = {signum: signal.signal(signum, lambda signum, frame: held.append(signum))
+                for signum in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
+        for signum in held:
+            signal.raise_signal(signum)  # its own handler runs (and may raise) here
 
 
 def _read_text(handle: IO[bytes]) -> str:

@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from benchmarks import catalog
+from benchmarks import catalog, harness
 from benchmarks.progress import Progress
 from benchmarks.rows import CsvAppender, read_csv
 from test_bench_report import row
@@ -135,3 +135,24 @@ def test_progress_in_a_log_is_a_line_at_the_first_run_and_per_tenth_of_the_runs(
     assert lines[0].startswith("benchmarks:   5%") and "1/20" in lines[0]
     assert lines[1].startswith("benchmarks:  10%") and "2/20" in lines[1]
     assert "20/20" in lines[-1] and "unsolved=5" in lines[-1]
+
+
+class _Stopped(Exception):
+    pass
+
+
+def test_a_signal_while_a_planner_starts_takes_effect_once_it_is_registered():
+    def stop(signum, frame):
+        raise _Stopped(signum)
+    previous = signal.signal(signal.SIGTERM, stop)
+    steps = []
+    try:
+        with pytest.raises(_Stopped):
+            with harness._signals_held():
+                signal.raise_signal(signal.SIGTERM)
+                steps.append("registered")
+            steps.append("after the block")
+        assert steps == ["registered"]
+        assert signal.getsignal(signal.SIGTERM) is stop
+    finally:
+        signal.signal(signal.SIGTERM, previous)
