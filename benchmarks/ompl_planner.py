@@ -59,8 +59,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _plan(parser, args, seed: int):
-    """OMPL's result and the name of the vehicle or system; None after one line on
-    stderr (bad usage or problem)."""
+    """OMPL's result, the name of the vehicle or system and whether its rows end in
+    K (a kinodynamic kinoplan system); None after one line on stderr."""
     problem = read_problem_from_stdin("ompl_planner", parse_any_problem)
     if problem is None:
         return None
@@ -75,8 +75,9 @@ def _plan(parser, args, seed: int):
                          f"the {name} {'system' if is_kinoplan(problem) else 'vehicle'}\n")
         return None
     if is_kinoplan(problem):
-        return ompl_family.solve_family(problem, args.planner, args.time, seed), name
-    return ompl_adapters.solve(problem, vehicle, args.planner, args.time, seed), name
+        return (ompl_family.solve_family(problem, args.planner, args.time, seed), name,
+                problem.system.kinodynamic)
+    return ompl_adapters.solve(problem, vehicle, args.planner, args.time, seed), name, False
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -91,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_NO_OMPL
     if found is None:
         return EXIT_USAGE
-    result, name = found
+    result, name, ends_in_count = found
     if args.stats:
         status = "solved" if result.solved else "time_limit"
         sys.stderr.write(f"ompl_planner stats: status={status} planner=ompl-{args.planner} "
@@ -102,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
         sys.stderr.write(f"ompl_planner: no solution ({result.status}) after "
                          f"{result.planning_seconds:.2f} s (seed {seed})\n")
         return EXIT_NO_SOLUTION
-    sys.stdout.write(format_plan(result.trajectory, result.tree))
+    sys.stdout.write(format_plan(result.trajectory, result.tree, ends_in_count))
     return EXIT_SOLVED
 
 

@@ -12,7 +12,7 @@ failures are a :class:`PlanParseError` naming the 1-based line.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 
 Row = tuple[float, ...]
 
@@ -24,14 +24,23 @@ class PlanParseError(ValueError):
         self.message = message
 
 
-def _row_text(values: Iterable[float]) -> str:
+def _row_text(values: Sequence[float]) -> str:
     return " ".join(repr(float(v)) for v in values)
 
 
-def format_plan(trajectory: Sequence[Sequence[float]], tree: Sequence[Sequence[float]]) -> str:
-    """Both sections; rows are 2 or 6 numbers (trajectory) and 4 or 6 (tree)."""
+def _row_text_with_count(values: Sequence[float]) -> str:
+    """A kinodynamic kinoplan row: floats, then K, a whole number (SPEC 5.4)."""
+    return " ".join([*(repr(float(v)) for v in values[:-1]), str(int(values[-1]))])
+
+
+def format_plan(trajectory: Sequence[Sequence[float]], tree: Sequence[Sequence[float]],
+                ends_in_count: bool = False) -> str:
+    """Both sections; rows are 2 or 6 numbers (trajectory) and 4 or 6 (tree), or a
+    kinoplan system's. ``ends_in_count``: every row ends in K, printed as an integer
+    (a kinodynamic kinoplan system's rows)."""
+    row_text = _row_text_with_count if ends_in_count else _row_text
     parts = [str(len(trajectory))]
-    parts.extend(_row_text(row) for row in trajectory)
+    parts.extend(row_text(row) for row in trajectory)
     parts.append(str(len(tree)))
-    parts.extend(_row_text(row) for row in tree)
+    parts.extend(row_text(row) for row in tree)
     return "\n".join(parts) + "\n"

@@ -189,7 +189,8 @@ def main(argv: list[str] | None = None) -> int:
             f"{stats.iterations} iterations, {stats.planning_seconds:.2f} s "
             f"(seed {run_seed})")
         return EXIT_NO_SOLUTION
-    failure = write_stdout(format_plan(result.trajectory, result.tree))
+    failure = write_stdout(format_plan(result.trajectory, result.tree,
+                                       ends_in_count=si.duration is not None))
     if failure is None:
         return EXIT_SOLVED
     if not isinstance(failure, BrokenPipeError):  # a reader that left (| head) wants no note

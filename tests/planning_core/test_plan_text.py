@@ -40,3 +40,12 @@ def test_damaged_output_names_the_line(text, line, words):
 def test_trailing_text_is_reported_not_fatal():
     parsed = parse_plan("1\n1 2\n0\nDEBUG done\n", 2, 4)
     assert parsed.trailing_line == 4 and parsed.trajectory == ((1.0, 2.0),)
+
+
+def test_a_kinodynamic_row_ends_in_k_as_an_integer_and_reads_back():
+    rows = [(-1.5, 0.25, 2.0, 8)]
+    text = format_plan(rows, rows, ends_in_count=True)
+    assert text.splitlines()[1] == "-1.5 0.25 2.0 8"
+    assert format_plan(rows, []).splitlines()[1] == "-1.5 0.25 2.0 8.0"
+    parsed = parse_plan(text, 4, 4)
+    assert list(parsed.trajectory) == [(-1.5, 0.25, 2.0, 8.0)]
