@@ -29,6 +29,8 @@ from collections.abc import Callable, Sequence
 from planning_core.spaces import TAU, State, StateSpace, compile_metric_sum
 
 _isfinite = math.isfinite
+COMPILED = not __file__.endswith(".py")
+"""True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
 
 
 class KDTree:
@@ -49,8 +51,15 @@ class KDTree:
         self.leaf_capacity = leaf_capacity
         self._points: list[State] = []
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
-        self._distance = space.distance
-        self._bound = compile_box_bound(space)
+        self._distance: Callable[[State, State], float]
+        self._bound: Callable[[State, list, list, float], float]
+        self._wrap: Callable[[State], State]
+        if COMPILED:
+            metric = BoxMetric(space)
+            self._distance, self._bound, self._wrap = metric.distance, metric.bound, metric.wrap
+        else:
+            self._distance, self._bound = space.distance, compile_box_bound(space)
+            self._wrap = space.wrap
         weight = {i: w for indices, w in space.groups for i in indices}
         # Only axes the metric weighs are worth splitting on.
         self._axes = tuple(i for i in sorted(weight) if weight[i] > 0.0)
@@ -72,7 +81,7 @@ class KDTree:
         point = _checked(state, self.space.dimension)
         key = point
         if self._angles:
-            key = self.space.wrap(point)
+            key = self._wrap(point)
             for i in self._angles:
                 if abs(point[i]) > self._extent:
                     self._extent = abs(point[i])
@@ -139,7 +148,7 @@ class KDTree:
         if not self._angles:
             return q, q, 0.0
         extent = max(self._extent, max(abs(q[i]) for i in self._angles))
-        return q, self.space.wrap(q), angle_slack(extent)
+        return q, self._wrap(q), angle_slack(extent)
 
     def nearest(self, query: Sequence[float]) -> int:
         """Index of the nearest point; ties go to the earliest inserted.
@@ -299,6 +308,103 @@ def _checked(state: Sequence[float], dimension: int) -> State:
     if not all(map(_isfinite, point)):
         raise ValueError(f"a state with a non-finite value: {point!r}")
     return point
+
+
+class BoxMetric:
+    """``space.distance``, the box bound of :func:`compile_box_bound` and
+    ``space.wrap`` as loops over the metric's groups, with the same float
+    operations in the same order (so the same bits). Compiled (mypyc), a query
+    makes these calls several times faster than the generated functions, which
+    interpreted are the faster ones (docs/hot-paths.md)."""
+
+    def __init__(self, space: StateSpace) -> None:
+        self.order: list[int] = []
+        """The grouped axes, group after group."""
+        self.ends: list[int] = []
+        """Where each group's axes end in ``order``."""
+        self.weights: list[float] = []
+        self.single: list[bool] = []
+        """One axis: the group's term is ``W * abs(d)``, else ``W * sqrt(sum of d * d)``."""
+        for indices, weight in space.groups:
+            self.order.extend(indices)
+            self.ends.append(len(self.order))
+            self.weights.append(float(weight))
+            self.single.append(len(indices) == 1)
+        self.angle: list[bool] = [v.angle for v in space.variables]
+        self.any_angle: bool = any(self.angle)
+
+    def distance(self, a: tuple[float, ...], b: tuple[float, ...]) -> float:
+        total = 0.0
+        start = 0
+        for g in range(len(self.ends)):
+            end = self.ends[g]
+            squares = 0.0
+            d = 0.0
+            for j in range(start, end):
+                i = self.order[j]
+                d = b[i] - a[i]
+                if self.angle[i]:
+                    d = math.remainder(d, TAU)
+                squares += d * d
+            if self.single[g]:
+                total += self.weights[g] * abs(d)
+            else:
+                total += self.weights[g] * math.sqrt(squares)
+            start = end
+        return total
+
+    def bound(self, q: tuple[float, ...], lo: list[float], hi: list[float],
+              slack: float) -> float:
+        total = 0.0
+        start = 0
+        for g in range(len(self.ends)):
+            end = self.ends[g]
+            squares = 0.0
+            gap = 0.0
+            for j in range(start, end):
+                i = self.order[j]
+                gap = _angle_gap_of(q[i], lo[i], hi[i], slack) if self.angle[i] else \
+                    _real_gap_of(q[i], lo[i], hi[i])
+                squares += gap * gap
+            if self.single[g]:
+                total += self.weights[g] * abs(gap)
+            else:
+                total += self.weights[g] * math.sqrt(squares)
+            start = end
+        return total
+
+    def wrap(self, state: tuple[float, ...]) -> tuple[float, ...]:
+        if not self.any_angle:
+            return tuple(state)
+        angle = self.angle
+        return tuple([math.remainder(state[i], TAU) if angle[i] else state[i]
+                      for i in range(len(state))])
+
+
+def _real_gap_of(v: float, lo: float, hi: float) -> float:
+    """How far ``v`` lies outside ``[lo, hi]`` (:func:`_real_gap`'s source)."""
+    g = lo - v
+    if g < 0.0:
+        g = v - hi
+        if g < 0.0:
+            g = 0.0
+    return g
+
+
+def _angle_gap_of(v: float, lo: float, hi: float, slack: float) -> float:
+    """The shorter way round from ``v`` to the arc ``[lo, hi]``, less ``slack``
+    (:func:`_angle_gap`'s source)."""
+    if v < lo:
+        g = lo - v
+        u = v + TAU - hi
+    elif v > hi:
+        g = v - hi
+        u = lo + TAU - v
+    else:
+        g = u = 0.0
+    if u < g:
+        g = u
+    return g - slack if g > slack else 0.0
 
 
 def compile_box_bound(space: StateSpace) -> Callable[[State, list, list, float], float]:

@@ -12,7 +12,9 @@ import random
 
 import pytest
 
-from planning_core.nearest.kdtree import KDTree, LinearScan, angle_slack, compile_box_bound
+from planning_core.nearest import kdtree
+from planning_core.nearest.kdtree import (BoxMetric, KDTree, LinearScan, angle_slack,
+                                            compile_box_bound)
 from planning_core.spaces import StateSpace, Variable
 
 PI = math.pi
@@ -152,6 +154,29 @@ def test_large_unwrapped_angles_stay_exact():
     for _ in range(300):
         q = (rng.uniform(0, 10), rng.uniform(0, 10), rng.uniform(-1e7, 1e7))
         assert tree.k_nearest(q, 5) == scan.k_nearest(q, 5)
+
+
+@pytest.mark.parametrize("name", sorted(SPACES))
+def test_the_compiled_builds_metric_is_the_generated_one_bit_for_bit(name):
+    space, rng = SPACES[name](), random.Random(len(name))
+    metric, bound = BoxMetric(space), compile_box_bound(space)
+    points = []
+    for _ in range(3000):
+        a, b = make_state(space, rng, points), make_state(space, rng, points)
+        points.append(a)
+        assert metric.distance(a, b).hex() == space.distance(a, b).hex()
+        assert metric.wrap(a) == space.wrap(a)
+        lo = [min(c) for c in zip(space.wrap(a), space.wrap(b))]
+        hi = [max(c) for c in zip(space.wrap(a), space.wrap(b))]
+        q, slack = space.wrap(make_state(space, rng, points)), rng.choice((0.0, 1e-12))
+        assert metric.bound(q, lo, hi, slack).hex() == bound(q, lo, hi, slack).hex()
+
+
+@pytest.mark.parametrize("name", sorted(SPACES))
+def test_equals_linear_scan_measuring_as_the_compiled_build(name, monkeypatch):
+    monkeypatch.setattr(kdtree, "COMPILED", not kdtree.COMPILED)
+    compare(SPACES[name](), n_points=300, n_queries=300, leaf_capacity=8, seed=len(name),
+            scan_every=3)
 
 
 def test_box_bound_never_exceeds_a_distance_inside():
