@@ -116,7 +116,7 @@ class Spaceship(SpaceshipVariables):
         writes it (theta from +x, or from -x for a velocity of -0.0).
 
         ``grid``: the occupancy grid the ship flies over (anything with row-major
-        ``blocked`` cells, ``width`` and ``height``, such as a GridWorld): None is
+        ``cells`` as bytes, ``width`` and ``height``, such as a GridWorld): None is
         returned as soon as a slice's position is outside it or in a blocked cell
         (SPEC 1). The test is written inline, not called: this loop is the ship
         planners' hot path (docs/parameter-history.md). With ``slices_out``, the
@@ -128,9 +128,10 @@ class Spaceship(SpaceshipVariables):
         # A slice's thrust from the +x axis; in motion it is turned by the velocity's
         # direction (its unit vector: divided by the speed below).
         push_x, push_y = step * math.cos(theta), step * math.sin(theta)
-        blocked = grid.blocked if grid is not None else None
-        width: int = grid.width if grid is not None else 0
-        height: int = grid.height if grid is not None else 0
+        tested = grid is not None
+        cells: bytes = grid.cells if tested else b""
+        width: int = grid.width if tested else 0
+        height: int = grid.height if tested else 0
         for _ in range(SLICES):
             speed = math.sqrt(dx * dx + dy * dy)
             if speed > 0.0:
@@ -141,8 +142,8 @@ class Spaceship(SpaceshipVariables):
                 dx, dy = dx + step * math.cos(a), dy + step * math.sin(a)
             x = x + DT * dx
             y = y + DT * dy
-            if blocked is not None and (not (0.0 <= x < width and 0.0 <= y < height)
-                                        or blocked[int(y) * width + int(x)]):
+            if tested and (not (0.0 <= x < width and 0.0 <= y < height)
+                           or cells[int(y) * width + int(x)]):
                 return None
             if slices_out is not None:
                 slices_out.append((x, y, dx, dy))

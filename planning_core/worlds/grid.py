@@ -52,6 +52,9 @@ class GridWorld:
         self.height: int = problem.height
         blocked = problem.blocked
         self.blocked = list(blocked) if len(blocked) <= LIST_MAX_CELLS else blocked
+        self.cells: bytes = bytes(blocked)
+        """The same cells as bytes: compiled loops index bytes natively, where the list
+        (faster interpreted) is a generic lookup (docs/hot-paths.md)."""
 
     def point_free(self, x: float, y: float) -> bool:
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
