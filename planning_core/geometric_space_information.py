@@ -60,7 +60,7 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
         super().__init__(problem)
         system = self.system
         self.distance = system.distance
-        self.interpolate = system.interpolate
+        self.interpolate = self.space.interpolate  # the unrolled one, without a wrapper
         self.check = system.check
         self.dimension = self.space.dimension
         self.can_end_at = self.is_valid

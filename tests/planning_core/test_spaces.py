@@ -190,3 +190,18 @@ def test_pickles():
     assert copy == space
     a, b = (0, 0, 3.0, 1.0, 0.5), (1, 2, -3.0, 2.0, -0.5)
     assert copy.distance(a, b) == space.distance(a, b)
+
+
+def test_the_unrolled_interpolate_is_the_reference_method_bit_for_bit():
+    rng = random.Random(11)
+    spaces = [StateSpace.real_vector(("x", "y"), (0, 0), (10, 10)), StateSpace.so2(),
+              StateSpace.from_metric((Variable("x", 0, 10), Variable("y", 0, 10),
+                                      Variable("theta", angle=True), Variable("v", -2, 2)),
+                                     [("x,y", 0.7), ("theta", 0.3)])]
+    for space in spaces:
+        for _ in range(2000):
+            a = tuple(rng.uniform(-20, 20) for _ in space.variables)
+            b = tuple(rng.uniform(-20, 20) for _ in space.variables)
+            t = rng.choice((0.0, 1.0, 0.5, math.nextafter(0.5, 0.0), rng.random()))
+            fast, reference = space.interpolate(a, b, t), StateSpace.interpolate(space, a, b, t)
+            assert [v.hex() for v in fast] == [v.hex() for v in reference]
