@@ -29,6 +29,7 @@ MODULES = (
     "rrt_cli.planners.rgrrt",
     "rrt_cli.planners.blossom",
     "planning_core.nearest.kdtree",
+    "planning_core.worlds.segment_tests",
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 

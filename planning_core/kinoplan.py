@@ -8,7 +8,6 @@ with its weight; angle differences wrapped) is at most the tolerance.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Optional
@@ -17,7 +16,6 @@ from planning_core.goal import PLANNER_MARGIN
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, OUTSIDE_BOX, ContinuousWorld
-from planning_core.worlds.shapes import segment_gap
 
 State = tuple[float, ...]
 
@@ -209,18 +207,7 @@ def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
 def segment_clearance(world: ContinuousWorld):
     """``gap(x0, y0, x1, y1, enough)``: the distance from a free closed segment to
     the world box's sides and the obstacles, or a value of at least ``enough``."""
-    box = world.box.bbox if world.box is not None else (-math.inf,) * 2 + (math.inf,) * 2
-    obstacles = tuple((*o.bbox, o) for o in world.obstacles)
-
-    def gap(x0: float, y0: float, x1: float, y1: float, enough: float) -> float:
-        lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
-        ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
-        best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
-        for ox0, oy0, ox1, oy1, obstacle in obstacles:
-            if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:  # else cannot be nearer
-                best = min(best, segment_gap(obstacle, x0, y0, x1, y1))
-        return best
-    return gap
+    return world.segment_clearance
 
 
 def state_valid(system: FamilySystem, world: Optional[ContinuousWorld],

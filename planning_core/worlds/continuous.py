@@ -9,6 +9,7 @@ then only the obstacles count, and there are usually none.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Union
@@ -18,7 +19,6 @@ from planning_core.worlds.shapes import (
     ConvexPolygon,
     Disc,
     Rect,
-    Segment,
     Shape,
     _edge_separates,
     _poly_disc,
@@ -27,7 +27,9 @@ from planning_core.worlds.shapes import (
     placed_coordinates,
     point_distance,
     point_in,
+    segment_gap,
 )
+from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, SegmentTests
 
 Obstacle = Union[Rect, Disc, ConvexPolygon]
 OUTSIDE_BOX = -1
@@ -43,6 +45,7 @@ class ContinuousWorld:
     obstacles: tuple[Obstacle, ...] = ()
     _bboxes: tuple[BBox, ...] = field(init=False, repr=False, compare=False)
     _tests: dict = field(init=False, repr=False, compare=False)
+    _segments: SegmentTests = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.box is not None and not isinstance(self.box, Rect):
@@ -55,6 +58,7 @@ class ContinuousWorld:
         object.__setattr__(self, "obstacles", obstacles)
         object.__setattr__(self, "_bboxes", tuple(o.bbox for o in obstacles))
         object.__setattr__(self, "_tests", {})
+        object.__setattr__(self, "_segments", _segment_tests(self.box, obstacles))
 
     def _tests_for(self, kind: type) -> tuple[Callable[[Shape, Obstacle], bool], ...]:
         """Per obstacle, the exact test against a query of type ``kind`` (cached)."""
@@ -93,10 +97,18 @@ class ContinuousWorld:
         return self.first_obstacle(polygon) is None
 
     def segment_free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
-        """The closed segment (an arm link) is in the box and touches no obstacle.
+        """The closed segment (an arm link) is in the box and touches no obstacle:
+        ``first_obstacle(Segment(...)) is None``, by the same tests, without building
+        the segment (:class:`SegmentTests`, compiled: the arm's hot path).
 
         A NaN end is never free."""
-        return self.first_obstacle(Segment._trusted(x0, y0, x1, y1)) is None
+        return self._segments.free(x0, y0, x1, y1)
+
+    def segment_clearance(self, x0: float, y0: float, x1: float, y1: float,
+                          enough: float) -> float:
+        """The distance from a free closed segment to the box's sides and the
+        obstacles, or a value of at least ``enough``."""
+        return self._segments.gap(x0, y0, x1, y1, enough)
 
     def point_free(self, x: float, y: float) -> bool:
         """The point is in the closed box and in no closed obstacle (NaN is never free)."""
@@ -173,6 +185,29 @@ class ContinuousWorld:
             return True
 
         return free
+
+
+def _segment_tests(box: Optional[Rect], obstacles: tuple[Obstacle, ...]) -> SegmentTests:
+    """The world bound for segment queries: per obstacle its kind, box and data."""
+    kinds, boxes, points, discs, gaps = [], [], [], [], []
+    for obstacle in obstacles:
+        boxes.append(obstacle.bbox)
+        gaps.append(None)
+        if isinstance(obstacle, Disc):
+            kinds.append(DISC)
+            points.append(())
+            discs.append((obstacle.cx, obstacle.cy, obstacle.r))
+            continue
+        discs.append((0.0, 0.0, 0.0))
+        if isinstance(obstacle, Rect):
+            kinds.append(RECT)
+            points.append(obstacle.corners)
+        else:
+            kinds.append(POLYGON)
+            points.append(obstacle.points)
+            gaps[-1] = functools.partial(segment_gap, obstacle)
+    return SegmentTests(box.bbox if box is not None else None, kinds, boxes, points, discs,
+                        gaps)
 
 
 def _obstacle_check(obstacle: Obstacle) -> tuple:

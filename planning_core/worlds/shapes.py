@@ -26,6 +26,14 @@ import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence, Union
 
+from planning_core.worlds.segment_tests import (boxes_overlap, corner_gap,
+                                                segment_meets_disc, segment_meets_polygon,
+                                                segment_meets_rect, segment_rect_gap)
+from planning_core.worlds.segment_tests import edge_separates as _edge_separates
+from planning_core.worlds.segment_tests import near_segment as _near_segment
+from planning_core.worlds.segment_tests import segment_distance as _segment_distance
+from planning_core.worlds.segment_tests import strictly_one_side as _strictly_one_side
+
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
@@ -237,55 +245,9 @@ def placed_coordinates(points: Sequence[Point], x: float, y: float,
 # --- Primitive predicates -----------------------------------------------------------
 
 
-def boxes_overlap(a: BBox, b: BBox) -> bool:
-    """Closed boxes share a point (touching counts)."""
-    return a[0] <= b[2] and b[0] <= a[2] and a[1] <= b[3] and b[1] <= a[3]
-
-
 def _box_within(inner: BBox, outer: BBox) -> bool:
     return (outer[0] <= inner[0] and inner[2] <= outer[2]
             and outer[1] <= inner[1] and inner[3] <= outer[3])
-
-
-def _edge_separates(poly: Sequence[Point], others: Sequence[Point]) -> bool:
-    """Some edge line of the CCW ``poly`` has every point of ``others`` strictly outside it."""
-    ax, ay = poly[-1]
-    for bx, by in poly:
-        ex, ey = bx - ax, by - ay
-        for qx, qy in others:
-            if ex * (qy - ay) - ey * (qx - ax) >= 0.0:  # on the line or inside: no separation
-                break
-        else:
-            return True
-        ax, ay = bx, by
-    return False
-
-
-def _strictly_one_side(ax: float, ay: float, bx: float, by: float, pts: Sequence[Point]) -> bool:
-    """Every point is strictly on the same side of the line through a and b (False if a == b)."""
-    ex, ey = bx - ax, by - ay
-    side = 0.0
-    for qx, qy in pts:
-        cr = ex * (qy - ay) - ey * (qx - ax)
-        if cr == 0.0 or cr * side < 0.0:
-            return False
-        side = cr
-    return True
-
-
-def _near_segment(ax: float, ay: float, bx: float, by: float,
-                  cx: float, cy: float, r2: float) -> bool:
-    """The point c is within distance sqrt(r2) of the closed segment ab (equal counts)."""
-    ex, ey, wx, wy = bx - ax, by - ay, cx - ax, cy - ay
-    t = ex * wx + ey * wy
-    if t <= 0.0:
-        return wx * wx + wy * wy <= r2
-    l2 = ex * ex + ey * ey
-    if t >= l2:
-        dx, dy = cx - bx, cy - by
-        return dx * dx + dy * dy <= r2
-    cr = ex * wy - ey * wx
-    return cr * cr <= r2 * l2
 
 
 def _poly_disc(pts: Sequence[Point], cx: float, cy: float, r: float) -> bool:
@@ -328,23 +290,17 @@ def polygon_disc_intersect(p: ConvexPolygon, d: Disc) -> bool:
 
 def segment_polygon_intersect(s: Segment, p: ConvexPolygon) -> bool:
     """SAT with the polygon's edge lines and the segment's own line."""
-    if not boxes_overlap(s.bbox, p.bbox):
-        return False
-    if _edge_separates(p.points, ((s.x0, s.y0), (s.x1, s.y1))):
-        return False
-    return not _strictly_one_side(s.x0, s.y0, s.x1, s.y1, p.points)
+    return segment_meets_polygon(s.x0, s.y0, s.x1, s.y1, s.bbox, p.bbox, p.points)
 
 
 def segment_rect_intersect(s: Segment, rect: Rect) -> bool:
     """SAT: bounding boxes (the rect's axes), then the segment's line against the corners."""
-    return (boxes_overlap(s.bbox, rect.bbox)
-            and not _strictly_one_side(s.x0, s.y0, s.x1, s.y1, rect.corners))
+    return segment_meets_rect(s.x0, s.y0, s.x1, s.y1, s.bbox, rect.bbox, rect.corners)
 
 
 def segment_disc_intersect(s: Segment, d: Disc) -> bool:
     """The centre is within ``r`` of the closed segment (tangent counts)."""
-    return (boxes_overlap(s.bbox, d.bbox)
-            and _near_segment(s.x0, s.y0, s.x1, s.y1, d.cx, d.cy, d.r * d.r))
+    return segment_meets_disc(s.x0, s.y0, s.x1, s.y1, s.bbox, d.bbox, d.cx, d.cy, d.r)
 
 
 def segments_intersect(s: Segment, t: Segment) -> bool:
@@ -450,13 +406,6 @@ def point_distance(shape: Shape, x: float, y: float) -> float:
     return best
 
 
-def _segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
-    ex, ey, wx, wy = bx - ax, by - ay, x - ax, y - ay
-    l2 = ex * ex + ey * ey
-    t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
-    return math.hypot(wx - t * ex, wy - t * ey)
-
-
 # --- Gaps (distances between disjoint shapes) ---------------------------------------
 
 
@@ -467,16 +416,6 @@ def segment_gap(shape: Union[Rect, Disc, ConvexPolygon],
     if isinstance(shape, Disc):
         return _segment_distance(x0, y0, x1, y1, shape.cx, shape.cy) - shape.r
     if isinstance(shape, Rect):
-        corners = shape.corners
-        rx0, ry0, rx1, ry1 = shape.bbox
-        best = min(math.hypot(max(rx0 - x0, 0.0, x0 - rx1), max(ry0 - y0, 0.0, y0 - ry1)),
-                   math.hypot(max(rx0 - x1, 0.0, x1 - rx1), max(ry0 - y1, 0.0, y1 - ry1)))
-    else:
-        corners = shape.points
-        best = min(point_distance(shape, x0, y0), point_distance(shape, x1, y1))
-    # Two disjoint convex sets are nearest at a vertex of one of them.
-    for vx, vy in corners:
-        d = _segment_distance(x0, y0, x1, y1, vx, vy)
-        if d < best:
-            best = d
-    return best
+        return segment_rect_gap(x0, y0, x1, y1, shape.bbox, shape.corners)
+    best = min(point_distance(shape, x0, y0), point_distance(shape, x1, y1))
+    return corner_gap(x0, y0, x1, y1, shape.points, best)

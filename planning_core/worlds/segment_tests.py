@@ -1,0 +1,191 @@
+"""Closed segments (the arm's links) against a world's obstacles, on plain floats.
+
+The primitive predicates that :mod:`planning_core.worlds.shapes` builds its pair
+tests from live here, with the segment-against-obstacle tests themselves, so
+that the arm's hot path (a link free? how far from everything?) runs compiled
+(mypyc, ``planning_core.compiled``) from the same single copy the shapes use.
+:class:`SegmentTests` binds a world's box and obstacles once.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable, Optional, Sequence
+
+Point = tuple[float, float]
+BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
+
+RECT, DISC, POLYGON = 0, 1, 2
+"""Obstacle kinds, as :class:`SegmentTests` stores them."""
+
+
+def boxes_overlap(a: BBox, b: BBox) -> bool:
+    """Closed boxes share a point (touching counts)."""
+    return a[0] <= b[2] and b[0] <= a[2] and a[1] <= b[3] and b[1] <= a[3]
+
+
+def edge_separates(poly: Sequence[Point], others: Sequence[Point]) -> bool:
+    """Some edge line of the CCW ``poly`` has every point of ``others`` strictly outside it."""
+    ax, ay = poly[-1]
+    for bx, by in poly:
+        ex, ey = bx - ax, by - ay
+        separated = True
+        for qx, qy in others:
+            if ex * (qy - ay) - ey * (qx - ax) >= 0.0:  # on the line or inside: no separation
+                separated = False
+                break
+        if separated:
+            return True
+        ax, ay = bx, by
+    return False
+
+
+def strictly_one_side(ax: float, ay: float, bx: float, by: float,
+                      pts: Sequence[Point]) -> bool:
+    """Every point is strictly on the same side of the line through a and b (False if a == b)."""
+    ex, ey = bx - ax, by - ay
+    side = 0.0
+    for qx, qy in pts:
+        cr = ex * (qy - ay) - ey * (qx - ax)
+        if cr == 0.0 or cr * side < 0.0:
+            return False
+        side = cr
+    return True
+
+
+def near_segment(ax: float, ay: float, bx: float, by: float,
+                 cx: float, cy: float, r2: float) -> bool:
+    """The point c is within distance sqrt(r2) of the closed segment ab (equal counts)."""
+    ex, ey, wx, wy = bx - ax, by - ay, cx - ax, cy - ay
+    t = ex * wx + ey * wy
+    if t <= 0.0:
+        return wx * wx + wy * wy <= r2
+    l2 = ex * ex + ey * ey
+    if t >= l2:
+        dx, dy = cx - bx, cy - by
+        return dx * dx + dy * dy <= r2
+    cr = ex * wy - ey * wx
+    return cr * cr <= r2 * l2
+
+
+def segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
+    """Euclidean distance from the point (x, y) to the closed segment ab."""
+    ex, ey, wx, wy = bx - ax, by - ay, x - ax, y - ay
+    l2 = ex * ex + ey * ey
+    t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
+    return math.hypot(wx - t * ex, wy - t * ey)
+
+
+def segment_meets_rect(x0: float, y0: float, x1: float, y1: float, box: BBox,
+                       rect: BBox, corners: Sequence[Point]) -> bool:
+    """SAT: bounding boxes (the rect's axes), then the segment's line against the corners."""
+    return boxes_overlap(box, rect) and not strictly_one_side(x0, y0, x1, y1, corners)
+
+
+def segment_meets_disc(x0: float, y0: float, x1: float, y1: float, box: BBox,
+                       disc_box: BBox, cx: float, cy: float, r: float) -> bool:
+    """The centre is within ``r`` of the closed segment (tangent counts)."""
+    return boxes_overlap(box, disc_box) and near_segment(x0, y0, x1, y1, cx, cy, r * r)
+
+
+def segment_meets_polygon(x0: float, y0: float, x1: float, y1: float, box: BBox,
+                          poly_box: BBox, points: Sequence[Point]) -> bool:
+    """SAT with the polygon's edge lines and the segment's own line."""
+    if not boxes_overlap(box, poly_box):
+        return False
+    if edge_separates(points, ((x0, y0), (x1, y1))):
+        return False
+    return not strictly_one_side(x0, y0, x1, y1, points)
+
+
+def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
+                     corners: Sequence[Point]) -> float:
+    """Distance from a closed segment to a closed rect it does not touch."""
+    rx0, ry0, rx1, ry1 = rect
+    best = min(math.hypot(max(rx0 - x0, 0.0, x0 - rx1), max(ry0 - y0, 0.0, y0 - ry1)),
+               math.hypot(max(rx0 - x1, 0.0, x1 - rx1), max(ry0 - y1, 0.0, y1 - ry1)))
+    return corner_gap(x0, y0, x1, y1, corners, best)
+
+
+def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: Sequence[Point],
+               best: float) -> float:
+    """``best`` or a corner's distance to the segment, whichever is less (two
+    disjoint convex sets are nearest at a vertex of one of them)."""
+    for vx, vy in corners:
+        d = segment_distance(x0, y0, x1, y1, vx, vy)
+        if d < best:
+            best = d
+    return best
+
+
+class SegmentTests:
+    """A world's box and obstacles, bound once for segment queries."""
+
+    def __init__(self, box: Optional[BBox], kinds: list[int], boxes: list[BBox],
+                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]],
+                 polygon_gap: list[Optional[Callable[[float, float, float, float], float]]]):
+        self.has_box = box is not None
+        self.box: BBox = box if box is not None else (-math.inf, -math.inf, math.inf, math.inf)
+        self.kinds = kinds
+        """Per obstacle: RECT, DISC or POLYGON."""
+        self.boxes = boxes
+        """Per obstacle: its bounding box."""
+        self.points = points
+        """Per obstacle: a rect's corners or a polygon's points (CCW); () for a disc."""
+        self.discs = discs
+        """Per obstacle: a disc's (cx, cy, r); zeros for the others."""
+        self.polygon_gap = polygon_gap
+        """Per obstacle: a polygon's gap function (the shapes' own); None for the others."""
+
+    def free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
+        """The closed segment is in the closed box and touches no closed obstacle (a
+        NaN end is never free)."""
+        # not min()/max(): they drop a NaN, these keep one in the box (so xmin <= xmax fails)
+        xmin, xmax = (x0, x1) if x0 <= x1 else (x1, x0)
+        ymin, ymax = (y0, y1) if y0 <= y1 else (y1, y0)
+        if not (xmin <= xmax and ymin <= ymax):
+            return False
+        box = self.box
+        if self.has_box and not (box[0] <= xmin and xmax <= box[2]
+                                 and box[1] <= ymin and ymax <= box[3]):
+            return False
+        extent: BBox = (xmin, ymin, xmax, ymax)
+        for i in range(len(self.kinds)):
+            ox0, oy0, ox1, oy1 = self.boxes[i]
+            if not (ox0 <= xmax and xmin <= ox1 and oy0 <= ymax and ymin <= oy1):
+                continue
+            if self._meets(i, x0, y0, x1, y1, extent):
+                return False
+        return True
+
+    def _meets(self, i: int, x0: float, y0: float, x1: float, y1: float, extent: BBox) -> bool:
+        kind = self.kinds[i]
+        if kind == RECT:
+            return segment_meets_rect(x0, y0, x1, y1, extent, self.boxes[i], self.points[i])
+        if kind == DISC:
+            cx, cy, r = self.discs[i]
+            return segment_meets_disc(x0, y0, x1, y1, extent, self.boxes[i], cx, cy, r)
+        return segment_meets_polygon(x0, y0, x1, y1, extent, self.boxes[i], self.points[i])
+
+    def gap(self, x0: float, y0: float, x1: float, y1: float, enough: float) -> float:
+        """The distance from a free closed segment to the box's sides and the
+        obstacles, or a value of at least ``enough``."""
+        lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
+        ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
+        box = self.box
+        best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
+        for i in range(len(self.kinds)):
+            ox0, oy0, ox1, oy1 = self.boxes[i]
+            if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:  # else cannot be nearer
+                best = min(best, self._gap_to(i, x0, y0, x1, y1))
+        return best
+
+    def _gap_to(self, i: int, x0: float, y0: float, x1: float, y1: float) -> float:
+        kind = self.kinds[i]
+        if kind == DISC:
+            cx, cy, r = self.discs[i]
+            return segment_distance(x0, y0, x1, y1, cx, cy) - r
+        if kind == RECT:
+            return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.points[i])
+        polygon_gap: Any = self.polygon_gap[i]
+        return float(polygon_gap(x0, y0, x1, y1))

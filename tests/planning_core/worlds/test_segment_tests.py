@@ -1,0 +1,57 @@
+"""A world's bound segment tests (planning_core.worlds.segment_tests, compiled for the
+arm) answer as the shapes do: ``free`` as ``first_obstacle(Segment(...)) is None``,
+``gap`` as the closest of the box's sides and ``shapes.segment_gap`` per obstacle."""
+
+from __future__ import annotations
+
+import math
+import random
+
+from planning_core.worlds.continuous import ContinuousWorld
+from planning_core.worlds.shapes import ConvexPolygon, Disc, Rect, Segment, segment_gap
+
+OBSTACLES = (Rect(0.6, 0.6, 1.3, 1.3), Disc(1.6, -0.45, 0.2), Disc(-1.3, 0.5, 0.25),
+             ConvexPolygon(((-1.0, -1.5), (0.0, -1.8), (0.2, -0.9))), Rect(-1.7, -1.7, -1.2, -1.2))
+
+
+def reference_gap(world: ContinuousWorld, x0, y0, x1, y1, enough):
+    box = world.box.bbox if world.box is not None else (-math.inf,) * 2 + (math.inf,) * 2
+    lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
+    ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
+    best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
+    for obstacle in world.obstacles:
+        ox0, oy0, ox1, oy1 = obstacle.bbox
+        if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:
+            best = min(best, segment_gap(obstacle, x0, y0, x1, y1))
+    return best
+
+
+def random_segment(rng: random.Random):
+    x0, y0 = rng.uniform(-2.5, 2.5), rng.uniform(-2.5, 2.5)
+    if rng.random() < 0.1:
+        return x0, y0, x0, y0  # a point
+    length = rng.choice((0.05, 0.3, 1.0, 3.0))
+    return x0, y0, x0 + rng.uniform(-length, length), y0 + rng.uniform(-length, length)
+
+
+def test_free_and_gap_answer_as_the_shapes_do():
+    rng = random.Random(5)
+    for box in (Rect(-2.2, -2.2, 2.2, 2.2), None):
+        world = ContinuousWorld(box, OBSTACLES)
+        free_count = 0
+        for _ in range(5000):
+            x0, y0, x1, y1 = random_segment(rng)
+            free = world.first_obstacle(Segment(x0, y0, x1, y1)) is None
+            assert world.segment_free(x0, y0, x1, y1) == free
+            if free:
+                free_count += 1
+                enough = rng.choice((0.05, 1.0, math.inf))
+                got = world.segment_clearance(x0, y0, x1, y1, enough)
+                assert got.hex() == reference_gap(world, x0, y0, x1, y1, enough).hex()
+        assert 500 < free_count < 4500  # both answers were exercised
+
+
+def test_a_nan_end_is_never_free():
+    world = ContinuousWorld(None, OBSTACLES)
+    assert not world.segment_free(math.nan, 0.0, 1.0, 1.0)
+    assert not world.segment_free(0.0, 0.0, 1.0, math.nan)
