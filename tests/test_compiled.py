@@ -110,6 +110,19 @@ def test_a_fresh_build_is_what_runs():
                for file in files), files
 
 
+def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
+    """The benchmark harness starts ``python -m rrt_cli``: it must measure what users run."""
+    fresh_or_skip()
+    probe = ("import runpy, sys\nsys.argv = ['rrt_cli', '-seed', '1']\n"
+             "try:\n    runpy.run_module('rrt_cli', run_name='__main__')\n"
+             "except SystemExit:\n    pass\n"
+             "from planning_core import compiled\nsys.stderr.write(compiled.state)\n")
+    with open(SIMPLE0, "rb") as problem:
+        done = subprocess.run([sys.executable, "-c", probe], stdin=problem, capture_output=True,
+                              text=True, cwd=ROOT, env=_env(), timeout=60)
+    assert done.stdout.strip() and done.stderr.startswith("compiled ("), done.stderr
+
+
 @pytest.mark.parametrize("disable", ["", "1"])
 def test_run_sh_stats_says_which_ran(disable):
     fresh_or_skip()
