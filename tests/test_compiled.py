@@ -123,6 +123,21 @@ def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
     assert done.stdout.strip() and done.stderr.startswith("compiled ("), done.stderr
 
 
+def test_a_world_with_compiled_tests_pickles():
+    """A world binds compiled segment tests; it pickles by its fields (a native
+    object's __init__ takes arguments pickle does not give)."""
+    fresh_or_skip()
+    probe = ("import pickle\nfrom planning_core.compiled import activate\nactivate()\n"
+             "from planning_core.cli_args import parse_any_problem\n"
+             "p = parse_any_problem(open('benchmarks/problems/family/arm2-pair1.kp').read())\n"
+             "q = pickle.loads(pickle.dumps(p))\n"
+             "assert q == p and q.world.segment_free(0, 0, 0.5, 0.5)\n"
+             "import planning_core.worlds.segment_tests as t\nprint(t.__file__)\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, env=_env(), timeout=60)
+    assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
+
+
 @pytest.mark.parametrize("disable", ["", "1"])
 def test_run_sh_stats_says_which_ran(disable):
     fresh_or_skip()

@@ -60,6 +60,10 @@ class ContinuousWorld:
         object.__setattr__(self, "_tests", {})
         object.__setattr__(self, "_segments", _segment_tests(self.box, obstacles))
 
+    def __reduce__(self):
+        # Pickled by its fields: the bound tests (compiled ones among them) are rebuilt.
+        return (type(self), (self.box, self.obstacles))
+
     def _tests_for(self, kind: type) -> tuple[Callable[[Shape, Obstacle], bool], ...]:
         """Per obstacle, the exact test against a query of type ``kind`` (cached)."""
         tests = self._tests.get(kind)
