@@ -174,7 +174,7 @@ def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
     ``state``, how many of the next samples of a straight motion, each ``step``
     (per angle, unwrapped) further on, are surely valid too.
 
-    From each link's workspace clearance (:func:`segment_clearance`, less a
+    From each link's workspace clearance (``world.segment_clearance``, less a
     margin far above rounding) and a bound on how far its points move per step:
     those samples pass the exact test (the validator's) too. A body has none:
     ``world.body_test``'s free disc does that job.
@@ -187,7 +187,7 @@ def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
                abs(system.base_y) + system.l1 + system.l2, 1.0]
     margin = CLEARANCE_MARGIN * max(values)
     joints, l1, l2 = system.joints, system.l1, system.l2
-    clearance = segment_clearance(world)
+    clearance = world.segment_clearance
 
     def reach(state: Sequence[float], step: Sequence[float]) -> int:
         # Link 1 moves at most l1 |d theta1| per step, link 2 at most that plus
@@ -202,12 +202,6 @@ def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
             most = min(most, (clearance(bx, by, ex, ey, margin + most * move1) - margin) / move1)
         return int(max(0.0, min(most, 1e9)))
     return reach
-
-
-def segment_clearance(world: ContinuousWorld):
-    """``gap(x0, y0, x1, y1, enough)``: the distance from a free closed segment to
-    the world box's sides and the obstacles, or a value of at least ``enough``."""
-    return world.segment_clearance
 
 
 def state_valid(system: FamilySystem, world: Optional[ContinuousWorld],

@@ -98,6 +98,12 @@ def segment_meets_polygon(x0: float, y0: float, x1: float, y1: float, box: BBox,
     return not strictly_one_side(x0, y0, x1, y1, points)
 
 
+def segment_disc_gap(x0: float, y0: float, x1: float, y1: float,
+                     cx: float, cy: float, r: float) -> float:
+    """Distance from a closed segment to a closed disc it does not touch."""
+    return segment_distance(x0, y0, x1, y1, cx, cy) - r
+
+
 def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
                      corners: Sequence[Point]) -> float:
     """Distance from a closed segment to a closed rect it does not touch."""
@@ -184,7 +190,7 @@ class SegmentTests:
         kind = self.kinds[i]
         if kind == DISC:
             cx, cy, r = self.discs[i]
-            return segment_distance(x0, y0, x1, y1, cx, cy) - r
+            return segment_disc_gap(x0, y0, x1, y1, cx, cy, r)
         if kind == RECT:
             return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.points[i])
         polygon_gap: Any = self.polygon_gap[i]

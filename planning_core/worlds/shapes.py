@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence, Union
 
-from planning_core.worlds.segment_tests import (boxes_overlap, corner_gap,
+from planning_core.worlds.segment_tests import (boxes_overlap, corner_gap, segment_disc_gap,
                                                 segment_meets_disc, segment_meets_polygon,
                                                 segment_meets_rect, segment_rect_gap)
 from planning_core.worlds.segment_tests import edge_separates as _edge_separates
@@ -414,7 +414,7 @@ def segment_gap(shape: Union[Rect, Disc, ConvexPolygon],
     """Distance from the closed segment to the closed ``shape`` (a Disc, Rect or
     ConvexPolygon) that it does not touch. Rounded as floats are: keep a margin."""
     if isinstance(shape, Disc):
-        return _segment_distance(x0, y0, x1, y1, shape.cx, shape.cy) - shape.r
+        return segment_disc_gap(x0, y0, x1, y1, shape.cx, shape.cy, shape.r)
     if isinstance(shape, Rect):
         return segment_rect_gap(x0, y0, x1, y1, shape.bbox, shape.corners)
     best = min(point_distance(shape, x0, y0), point_distance(shape, x1, y1))
