@@ -6,8 +6,8 @@ stdin; and writes to stdout and stderr that never raise.
 
 argparse is imported only when a parser is made or an option value is bad
 (:data:`OneLineErrorParser` is made on first use): the planner parses its common
-command lines without it, and argparse with gettext and locale cost its start-up
-about 3 ms."""
+command lines without it (argparse with gettext and locale is a large share of its
+start-up: docs/setup-and-startup.md)."""
 
 from __future__ import annotations
 

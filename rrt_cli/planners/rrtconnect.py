@@ -64,7 +64,7 @@ class RRTConnectParams:
     lie inside walls and only feed extensions that stop at the wall."""
     kinoplan_free_space_targets: bool = False
     """``free_space_targets`` for the geometric family: off, uniform targets valid or
-    not, as OMPL's (5x faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
+    not, as OMPL's (faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
     frontier_targets: float = 0.9
     """Share of the random targets drawn from the trees' frontier (free cells with
     no node beside covered ones, where the world offers it); 0 gives the published RRT-Connect."""
