@@ -6,8 +6,8 @@ and both against OMPL with Python callbacks, measured in one run.
                                         [--no-ompl]
     python -m benchmarks.bench_compiled --kernels 5
 
-Problems: the quick preset's course problems for the point vehicle, and its
-problems for the two ships. Each case runs as whole processes in turn (./run.sh
+Problems: the quick preset's course problems and maps of 50x50 and up for the
+point vehicle, and its problems for the two ships. Each case runs as whole processes in turn (./run.sh
 compiled, ./run.sh with RRT_INTERPRETED=1, OMPL's planner), the order
 alternating, and reads each run's own planning time from its -stats line. The
 OMPL reference is geometric RRT for the point vehicle and control RRT for the
@@ -43,6 +43,8 @@ STATS = re.compile(r"stats: status=(\w+) .*planning_seconds=([0-9.]+)")
 MODES = ("compiled", "interpreted")
 OMPL_CPP_SOURCE = ROOT / "benchmarks" / "ompl_cpp" / "grid_ompl.cpp"
 OMPL_CPP_BINARY = ROOT / ".build" / "grid_ompl"
+POINT_TARGET_SIZE = 50
+"""Issue 19's point targets apply to maps of this width and height and up."""
 OMPL_CPP_MODE = {"point": "point", "spaceship": "ship", "left": "left"}
 
 
@@ -54,13 +56,20 @@ class Run:
 
 
 def problems_for(vehicle: str, patterns: list[str]) -> list[Path]:
-    """The quick preset's problems for ``vehicle`` (point: its course problems only)."""
+    """The quick preset's problems for ``vehicle`` (point: its course problems and
+    its maps of 50x50 and up, where issue 19 sets the point targets)."""
     plan = next(plan for plan in PRESETS["quick"].plans if plan.vehicle.value == vehicle)
     chosen = select_problems(plan)
     if vehicle == "point":
-        chosen = [path for path in chosen if problem_id(path).startswith("course-")]
+        chosen = [path for path in chosen if problem_id(path).startswith("course-")
+                  or min(_map_size(path)) >= POINT_TARGET_SIZE]
     return [path for path in chosen
             if not patterns or any(fnmatch.fnmatchcase(problem_id(path), p) for p in patterns)]
+
+
+def _map_size(problem: Path) -> tuple[int, int]:
+    parsed = parse_problem(problem.read_text())
+    return parsed.width, parsed.height
 
 
 def ompl_cpp_binary() -> Path | None:
