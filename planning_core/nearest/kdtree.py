@@ -25,10 +25,11 @@ import bisect
 import heapq
 import math
 from collections.abc import Callable, Sequence
+from types import SimpleNamespace
+from typing import cast
 
 from planning_core.spaces import TAU, State, StateSpace, compile_metric_sum
 
-_isfinite = math.isfinite
 COMPILED = not __file__.endswith(".py")
 """True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
 
@@ -51,24 +52,16 @@ class KDTree:
         self.leaf_capacity = leaf_capacity
         self._points: list[State] = []
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
-        self._distance: Callable[[State, State], float]
-        self._bound: Callable[[State, list, list, float], float]
-        self._wrap: Callable[[State], State]
-        if COMPILED:
-            metric = BoxMetric(space)
-            self._distance, self._bound, self._wrap = metric.distance, metric.bound, metric.wrap
-        else:
-            self._distance, self._bound = space.distance, compile_box_bound(space)
-            self._wrap = space.wrap
+        # A native object in the compiled build, so that its methods are direct calls.
+        self._metric: BoxMetric = BoxMetric(space) if COMPILED else _generated_metric(space)
         weight = {i: w for indices, w in space.groups for i in indices}
         # Only axes the metric weighs are worth splitting on.
         self._axes = tuple(i for i in sorted(weight) if weight[i] > 0.0)
         self._weights = tuple(weight.get(i, 0.0) for i in range(space.dimension))
         self._angles = tuple(i for i, v in enumerate(space.variables) if v.angle)
         self._extent = 0.0  # the largest |angle| added, for the slack
-        # A node is a list [lo, hi, axis, split, left, right, bucket]; a leaf has
-        # bucket = [indices, ascending], an inner node bucket = None.
-        self._root: list | None = None
+        self._slack_extent, self._slack = 0.0, angle_slack(0.0)  # the last slack and its extent
+        self._root: _Node | None = None
 
     def __len__(self) -> int:
         return len(self._points)
@@ -79,12 +72,9 @@ class KDTree:
     def add(self, state: Sequence[float]) -> int:
         """Insert a state; returns its index (insertion order)."""
         point = _checked(state, self.space.dimension)
-        key = point
-        if self._angles:
-            key = self._wrap(point)
-            for i in self._angles:
-                if abs(point[i]) > self._extent:
-                    self._extent = abs(point[i])
+        key, extent = self._key(point)
+        if extent > self._extent:
+            self._extent = extent
         index = len(self._points)
         self._points.append(point)
         self._keys.append(key)
@@ -94,23 +84,25 @@ class KDTree:
             return index
         axes = self._axes
         while True:
-            lo, hi = node[0], node[1]
+            lo, hi = node.lo, node.hi
             for i in axes:
                 v = key[i]
                 if v < lo[i]:
                     lo[i] = v
                 elif v > hi[i]:
                     hi[i] = v
-            bucket = node[6]
+            bucket = node.bucket
             if bucket is not None:
                 break
-            node = node[4] if key[node[2]] < node[3] else node[5]
+            child = node.left if key[node.axis] < node.split else node.right
+            assert child is not None  # an inner node has both children
+            node = child
         bucket.append(index)
         if len(bucket) > self.leaf_capacity:
             self._split(node)
         return index
 
-    def _leaf(self, indices: list[int]) -> list:
+    def _leaf(self, indices: list[int]) -> _Node:
         """A leaf over ``indices`` with their tight box."""
         keys, axes = self._keys, self._axes
         lo, hi = list(keys[indices[0]]), list(keys[indices[0]])
@@ -122,24 +114,25 @@ class KDTree:
                     lo[i] = v
                 elif v > hi[i]:
                     hi[i] = v
-        return [lo, hi, -1, 0.0, None, None, indices]
+        return _Node(lo, hi, indices)
 
-    def _split(self, node: list) -> None:
+    def _split(self, node: _Node) -> None:
         """Split an overfull leaf at the median of its widest weighted axis."""
-        lo, hi, weights = node[0], node[1], self._weights
+        lo, hi, weights = node.lo, node.hi, self._weights
         axis = max(self._axes, key=lambda i: (hi[i] - lo[i]) * weights[i], default=-1)
-        if axis < 0 or hi[axis] <= lo[axis]:
+        bucket = node.bucket
+        if axis < 0 or hi[axis] <= lo[axis] or bucket is None:
             return  # all points coincide on the metric axes: the leaf just grows
-        keys, bucket = self._keys, node[6]
+        keys = self._keys
         values = sorted(keys[i][axis] for i in bucket)
         split = values[len(values) // 2]
         if split == values[0]:  # keep the left side non-empty: the next larger value
             split = values[bisect.bisect_right(values, split)]
-        left = [i for i in bucket if keys[i][axis] < split]
-        right = [i for i in bucket if keys[i][axis] >= split]
-        node[2:] = [axis, split, self._leaf(left), self._leaf(right), None]
-        for child in (node[4], node[5]):
-            if len(child[6]) > self.leaf_capacity:
+        left = self._leaf([i for i in bucket if keys[i][axis] < split])
+        right = self._leaf([i for i in bucket if keys[i][axis] >= split])
+        node.axis, node.split, node.left, node.right, node.bucket = axis, split, left, right, None
+        for child in (left, right):
+            if child.bucket is not None and len(child.bucket) > self.leaf_capacity:
                 self._split(child)
 
     def _prepare(self, query: Sequence[float]) -> tuple[State, State, float]:
@@ -147,8 +140,21 @@ class KDTree:
         q = _checked(query, self.space.dimension)
         if not self._angles:
             return q, q, 0.0
-        extent = max(self._extent, max(abs(q[i]) for i in self._angles))
-        return q, self._wrap(q), angle_slack(extent)
+        key, extent = self._key(q)
+        extent = max(extent, self._extent)
+        if extent != self._slack_extent:
+            self._slack_extent, self._slack = extent, angle_slack(extent)
+        return q, key, self._slack
+
+    def _key(self, point: State) -> tuple[State, float]:
+        """The point with its angles wrapped, and its largest ``|angle|``. An angle
+        within [-pi, pi] is its own ``remainder(angle, 2*pi)``: such points are
+        their own key."""
+        extent = 0.0
+        for i in self._angles:
+            if abs(point[i]) > extent:
+                extent = abs(point[i])
+        return (point if extent <= math.pi else self._metric.wrap(point)), extent
 
     def nearest(self, query: Sequence[float]) -> int:
         """Index of the nearest point; ties go to the earliest inserted.
@@ -158,28 +164,30 @@ class KDTree:
         if self._root is None:
             raise ValueError("nearest() on an empty structure")
         q, key, slack = self._prepare(query)
-        dist, bound, points = self._distance, self._bound, self._points
+        metric, points = self._metric, self._points
         best, best_i = math.inf, -1
-        stack = [(-1.0, self._root)]
-        pop, push = stack.pop, stack.append
-        while stack:
-            b, node = pop()
+        # The stack: nodes to visit, each with its bound (-1.0: not computed yet).
+        nodes, bounds = [self._root], [-1.0]
+        while nodes:
+            node, b = nodes.pop(), bounds.pop()
             if b > best:
                 continue
-            bucket = node[6]
+            bucket = node.bucket
             if bucket is not None:
-                if b < 0.0 and bound(key, node[0], node[1], slack) > best:
+                if b < 0.0 and metric.bound(key, node.lo, node.hi, slack) > best:
                     continue
                 for i in bucket:
-                    d = dist(q, points[i])
+                    d = metric.distance(q, points[i])
                     if d < best or (d == best and i < best_i):
                         best, best_i = d, i
                 continue
-            near, far = (node[4], node[5]) if key[node[2]] < node[3] else (node[5], node[4])
-            b = bound(key, far[0], far[1], slack)
+            near, far = _children(node, key)
+            b = metric.bound(key, far.lo, far.hi, slack)
             if b <= best:
-                push((b, far))
-            push((-1.0, near))
+                nodes.append(far)
+                bounds.append(b)
+            nodes.append(near)
+            bounds.append(-1.0)
         return best_i
 
     def k_nearest(self, query: Sequence[float], k: int) -> list[int]:
@@ -188,22 +196,21 @@ class KDTree:
         if k <= 0 or self._root is None:
             return []
         q, key, slack = self._prepare(query)
-        dist, bound, points = self._distance, self._bound, self._points
+        metric, points = self._metric, self._points
         # Max-heap of the k best as (-d, -index): the top is the worst kept.
         kept: list[tuple[float, int]] = []
         worst = math.inf
-        stack = [(-1.0, self._root)]
-        pop, push = stack.pop, stack.append
-        while stack:
-            b, node = pop()
+        nodes, bounds = [self._root], [-1.0]
+        while nodes:
+            node, b = nodes.pop(), bounds.pop()
             if b > worst:
                 continue
-            bucket = node[6]
+            bucket = node.bucket
             if bucket is not None:
-                if b < 0.0 and bound(key, node[0], node[1], slack) > worst:
+                if b < 0.0 and metric.bound(key, node.lo, node.hi, slack) > worst:
                     continue
                 for i in bucket:
-                    d = dist(q, points[i])
+                    d = metric.distance(q, points[i])
                     if len(kept) < k:
                         heapq.heappush(kept, (-d, -i))
                         if len(kept) == k:
@@ -212,11 +219,13 @@ class KDTree:
                         heapq.heapreplace(kept, (-d, -i))
                         worst = -kept[0][0]
                 continue
-            near, far = (node[4], node[5]) if key[node[2]] < node[3] else (node[5], node[4])
-            b = bound(key, far[0], far[1], slack)
+            near, far = _children(node, key)
+            b = metric.bound(key, far.lo, far.hi, slack)
             if b <= worst:
-                push((b, far))
-            push((-1.0, near))
+                nodes.append(far)
+                bounds.append(b)
+            nodes.append(near)
+            bounds.append(-1.0)
         kept.sort(reverse=True)
         return [-negated for _, negated in kept]
 
@@ -228,25 +237,54 @@ class KDTree:
         if self._root is None:
             return []
         q, key, slack = self._prepare(query)
-        dist, bound, points = self._distance, self._bound, self._points
+        metric, points = self._metric, self._points
         found: list[tuple[float, int]] = []
-        stack = [self._root]
-        pop, push = stack.pop, stack.append
-        while stack:
-            node = pop()
-            if bound(key, node[0], node[1], slack) > radius:
+        nodes = [self._root]
+        while nodes:
+            node = nodes.pop()
+            if metric.bound(key, node.lo, node.hi, slack) > radius:
                 continue
-            bucket = node[6]
+            bucket = node.bucket
             if bucket is None:
-                push(node[5])
-                push(node[4])
+                nodes.extend(_children(node, key)[::-1])
                 continue
             for i in bucket:
-                d = dist(q, points[i])
+                d = metric.distance(q, points[i])
                 if d <= radius:
                     found.append((d, i))
         found.sort()
         return [i for _, i in found]
+
+
+class _Node:
+    """A kd-tree node: the tight box ``[lo, hi]`` of its points' keys; a leaf
+    holds their indices in ``bucket``, an inner node splits at ``split`` on
+    ``axis`` (keys below it go ``left``) and has ``bucket = None``."""
+
+    __slots__ = ("lo", "hi", "axis", "split", "left", "right", "bucket")
+
+    def __init__(self, lo: list[float], hi: list[float], bucket: list[int] | None) -> None:
+        self.lo = lo
+        self.hi = hi
+        self.axis = -1
+        self.split = 0.0
+        self.left: _Node | None = None
+        self.right: _Node | None = None
+        self.bucket = bucket
+
+
+def _children(node: _Node, key: State) -> tuple[_Node, _Node]:
+    """An inner node's children, the one on ``key``'s side of the split first."""
+    left, right = node.left, node.right
+    assert left is not None and right is not None
+    return (left, right) if key[node.axis] < node.split else (right, left)
+
+
+def _generated_metric(space: StateSpace) -> BoxMetric:
+    """Interpreted, :class:`BoxMetric`'s three methods as the space's generated
+    functions, which run faster than its loops there (docs/hot-paths.md)."""
+    return cast(BoxMetric, SimpleNamespace(distance=space.distance,
+                                           bound=compile_box_bound(space), wrap=space.wrap))
 
 
 class LinearScan:
@@ -305,8 +343,9 @@ def _checked(state: Sequence[float], dimension: int) -> State:
     point = tuple(state)
     if len(point) != dimension:
         raise ValueError(f"a state of {len(point)} values in a {dimension}-D space")
-    if not all(map(_isfinite, point)):
-        raise ValueError(f"a state with a non-finite value: {point!r}")
+    for v in point:
+        if not math.isfinite(v):
+            raise ValueError(f"a state with a non-finite value: {point!r}")
     return point
 
 
