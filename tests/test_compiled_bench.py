@@ -10,10 +10,11 @@ from benchmarks.bench_compiled import Run
 from benchmarks.generator import problem_id
 
 
-def test_point_runs_on_the_course_problems_and_the_ships_on_their_quick_problems():
+def test_point_runs_on_the_course_problems_and_big_maps_the_ships_on_their_quick_problems():
     point = [problem_id(path) for path in bench_compiled.problems_for("point", [])]
     ships = [problem_id(path) for path in bench_compiled.problems_for("spaceship", [])]
-    assert point and all(name.startswith("course-") for name in point)
+    assert "course-space-1" in point and "open-50" in point and "narrow-500" in point
+    assert all(name.startswith("course-") or name.endswith(("-50", "-500")) for name in point)
     assert "course-space-1" in ships and "open-20" in ships and "maze-20" not in ships
     assert [problem_id(p) for p in bench_compiled.problems_for("left", ["course-space-*"])] == [
         f"course-space-{k}" for k in range(4)]
