@@ -63,6 +63,29 @@ def source_digest(path: str) -> str:
         return sha256(source.read()).hexdigest()
 
 
+GENERATED_PREFIX = "rrt_generated_"
+
+
+def generated_name(source: str) -> str:
+    """The module name of generated source (integrators.advance_source): named by
+    its digest, so a compiled one is always of this very text."""
+    from hashlib import sha256
+    return GENERATED_PREFIX + sha256(source.encode()).hexdigest()[:24]
+
+
+def generated_module(source: str):
+    """The compiled module of generated ``source`` when the compiled build is in
+    use and holds it (``tools/build_compiled.py`` compiles the texts of
+    ``planning_core.systems.family.generated_sources``), else None."""
+    if not state.startswith("compiled"):
+        return None
+    import importlib.util
+    name = generated_name(source)
+    if importlib.util.find_spec(name) is None:
+        return None
+    return importlib.import_module(name)
+
+
 def why_not_fresh(build_dir: str) -> str | None:
     """None when the build in ``build_dir`` is fresh, else why it cannot be used."""
     if os.environ.get(DISABLE_VARIABLE, "") not in ("", "0"):

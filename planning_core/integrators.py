@@ -19,13 +19,16 @@ import keyword
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Optional
+
+from planning_core import compiled
 
 TAU = 2.0 * math.pi
 SCHEMES = ("euler", "rk4")
 # What a rate expression may call, besides the names the system declares.
 FUNCTIONS = {"cos": math.cos, "sin": math.sin, "tan": math.tan, "sqrt": math.sqrt}
 # The generated functions' own parameters (their locals all start with "_").
-RESERVED = frozenset({"state", "control", "valid", "out"})
+RESERVED = frozenset({"state", "control", "valid", "out", "self", "kmax", "pi"})
 
 State = tuple[float, ...]
 Rates = Callable[[Sequence[float], Sequence[float]], State]
@@ -196,30 +199,64 @@ def compile_propagator(dynamics: Dynamics, scheme: str, dt: float) -> Callable:
     return _run("\n".join(lines), namespace, "propagate")
 
 
-def compile_advance(dynamics: Dynamics, scheme: str, dt: float, condition: str,
-                    names: dict) -> Callable:
-    """``advance(state, control, kmax) -> (state, k)``: the held ``control`` (its
-    values; a K after them is ignored) for up to ``kmax`` slices, stopping before
-    the first slice whose state fails ``condition`` (an expression over the state
-    names and ``names``). Returns the last state that passed (``state`` itself
+def advance_source(dynamics: Dynamics, scheme: str,
+                   free_args: Optional[tuple[str, ...]] = None) -> str:
+    """The text of a module whose class ``Advance(dt, constants, lows, highs, free)``
+    has the method ``advance(state, control, kmax) -> (state, k)``: the held
+    ``control`` (its values; a K after them is ignored) for up to ``kmax`` slices,
+    stopping before the first slice whose state is not finite, is outside the
+    non-angle bounds ``[lows[i], highs[i]]``, or (with ``free_args``) fails
+    ``free(*free_args)``. It returns the last state that passed (``state`` itself
     when the first slice fails) and how many slices did: the same floats as
     :func:`compile_propagator`'s for those slices, the test fused into the loop
-    (the family planners' hot path)."""
-    _check_scheme(scheme, dt)
-    state = ", ".join(dynamics.state_names)
-    lines = ["def advance(state, control, kmax):",
-             *_bind(dynamics, "    "),
-             f"    _q = ({state},)",
-             "    for _k in range(kmax):",
-             *_slice_lines(dynamics, scheme, "        "),
-             f"        if not ({condition}):",
-             "            return _q, _k",
-             f"        _q = ({state},)",
-             "    return _q, kmax"]
-    namespace = _namespace(dynamics)
-    namespace.update(_DT=dt, _HALF=dt / 2.0, _SIXTH=dt / 6.0)
-    for name, value in names.items():
-        if not name.startswith("_"):
-            raise ValueError(f"advance: {name!r}: names of the test start with '_'")
-        namespace[name] = value
-    return _run("\n".join(lines), namespace, "advance")
+    (the family planners' hot path).
+
+    The numbers are the object's, not the text's, so one text serves every
+    problem of a system and scheme: the compiled build compiles these texts
+    ahead of time (:func:`advance_class` uses them when it can)."""
+    if scheme not in SCHEMES:
+        raise ValueError(f"integrate: unknown scheme {scheme!r} (euler | rk4)")
+    names, n = dynamics.state_names, len(dynamics.state_names)
+    state = ", ".join(names)
+    bounded = [i for i in range(n) if not dynamics.angles[i]]
+    tests = [f"{v} - {v} == 0.0" for v in names]
+    tests += [f"_lo{i} <= {names[i]} <= _hi{i}" for i in bounded]
+    if free_args is not None:
+        tests.append(f"_free({', '.join(free_args)})")
+    fields = [("_DT", "dt"), ("_HALF", "dt / 2.0"), ("_SIXTH", "dt / 6.0"), ("_TAU", "2.0 * pi")]
+    fields += [(c, f"constants[{j}]") for j, (c, _) in enumerate(dynamics.constants)]
+    fields += [(f"_{side}{i}", f"{array}[{i}]") for i in bounded
+               for side, array in (("lo", "lows"), ("hi", "highs"))]
+    lines = ["from __future__ import annotations",
+             "from math import cos, pi, remainder as _rem, sin, sqrt, tan",
+             "from typing import Any, Sequence",
+             "", "", "class Advance:",
+             "    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],",
+             "                 highs: Sequence[float], free: Any) -> None:",
+             *[f"        self.{name}: float = {value}" for name, value in fields],
+             "        self._free = free",
+             "",
+             "    def advance(self, state: Sequence[float], control: Sequence[float],",
+             "                kmax: int) -> tuple[tuple[float, ...], int]:",
+             *[f"        {name} = self.{name}" for name, _ in fields],
+             "        _free = self._free",
+             *_bind(dynamics, "        "),
+             f"        _q: tuple[float, ...] = ({state},)",
+             "        for _k in range(kmax):",
+             *_slice_lines(dynamics, scheme, "            "),
+             f"            if not ({' and '.join(tests)}):",
+             "                return _q, _k",
+             f"            _q = ({state},)",
+             "        return _q, kmax",
+             ""]
+    return "\n".join(lines)
+
+
+def advance_class(source: str) -> type:
+    """The class ``Advance`` of an :func:`advance_source` text: from the compiled
+    build when it holds that very text, else the text run here."""
+    module = compiled.generated_module(source)
+    if module is not None:
+        return module.Advance
+    namespace: dict = {"__name__": compiled.generated_name(source)}
+    return _run(source, namespace, "Advance")

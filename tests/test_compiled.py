@@ -110,6 +110,27 @@ def test_a_fresh_build_is_what_runs():
                for file in files), files
 
 
+def test_the_family_runs_its_generated_slice_loops_compiled():
+    """Every generated text the planners run is in the build, and a planner gets it
+    (an edited generator without a rebuild would run its texts interpreted)."""
+    fresh_or_skip()
+    probe = ("from planning_core import compiled\ncompiled.activate()\n"
+             "from planning_core.systems.family import generated_sources\n"
+             "from planning_core.cli_args import parse_any_problem\n"
+             "from planning_core.space_information import kinoplan_space_information\n"
+             "import sys\nmodules = [compiled.generated_module(t) for t in generated_sources()]\n"
+             "print(*(m.__file__ if m else 'missing' for m in modules))\n"
+             "p = parse_any_problem(open('benchmarks/problems/family/car2-corridors.kp').read())\n"
+             "print(sys.modules[type(kinoplan_space_information(p).advance.__self__).__module__]"
+             ".__file__)\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, env=_env(), timeout=60)
+    files = done.stdout.split()
+    assert len(files) > 1, done.stderr
+    assert all(file.startswith(compiled.BUILD_DIR) and file.endswith(compiled.extension_suffix())
+               for file in files), files
+
+
 def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
     """The benchmark harness starts ``python -m rrt_cli``: it must measure what users run."""
     fresh_or_skip()

@@ -45,15 +45,21 @@ def test_no_interpreted_class_derives_from_a_compiled_class():
     assert offenders == []
 
 
-@pytest.mark.parametrize("planner", ["rrt", pytest.param("kpiece", marks=pytest.mark.slow),
-                                     pytest.param("rgrrt", marks=pytest.mark.slow),
-                                     pytest.param("blossom", marks=pytest.mark.slow)])
-def test_a_compiled_family_run_prints_the_interpreted_bytes(planner):
+PENDULUM = (ROOT / "benchmarks" / "problems" / "family" / "pendulum-t3.kp").read_text()
+
+
+@pytest.mark.parametrize("planner, problem", [
+    ("rrt", SMALL_CAR2), ("rgrrt", PENDULUM),
+    pytest.param("kpiece", SMALL_CAR2, marks=pytest.mark.slow),
+    pytest.param("rgrrt", SMALL_CAR2, marks=pytest.mark.slow),
+    pytest.param("blossom", SMALL_CAR2, marks=pytest.mark.slow),
+    pytest.param("rrt", PENDULUM, marks=pytest.mark.slow)])
+def test_a_compiled_family_run_prints_the_interpreted_bytes(planner, problem):
     args = ["-planner", planner, "-seed", "2"]
-    fast = run_planner_compiled(args, SMALL_CAR2)
+    fast = run_planner_compiled(args, problem)
     assert fast.returncode == 0, fast.stderr
-    slow = run_planner(args, SMALL_CAR2)
+    slow = run_planner(args, problem)
     assert fast.stdout == slow.stdout
-    si = kinoplan_space_information(parse_kinoplan(SMALL_CAR2))
+    si = kinoplan_space_information(parse_kinoplan(problem))
     report = validate_plan(si, fast.stdout.decode())
     assert report.valid, report.first_failure

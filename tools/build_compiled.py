@@ -58,7 +58,8 @@ def _compile(work: Path) -> None:
     setup = work / "setup_hot.py"
     setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=GROUP,
                                    target=str(work / "c")))
-    paths = ",".join(compiled.source_path(module) for module in compiled.MODULES)
+    paths = ",".join([compiled.source_path(module) for module in compiled.MODULES]
+                     + [str(path) for path in _write_generated(work / "generated")])
     env = dict(os.environ, CFLAGS=CFLAGS, PYTHONHASHSEED="0")
     env.pop("PYTHONPATH", None)
     done = subprocess.run([sys.executable, str(setup), paths, "build_ext",
@@ -70,6 +71,19 @@ def _compile(work: Path) -> None:
         errors = [line for line in lines if ": error:" in line]  # mypy's notes can be many
         tail = "\n".join((errors or lines)[-30:])
         raise RuntimeError(f"mypyc build failed:\n{tail}")
+
+
+def _write_generated(folder: Path) -> list[Path]:
+    """The generated sources the planners run (family systems' fused slice loops),
+    each written as the top-level module its digest names (compiled.generated_name)."""
+    from planning_core.systems.family import generated_sources
+    folder.mkdir()
+    paths = []
+    for source in generated_sources():
+        path = folder / f"{compiled.generated_name(source)}.py"
+        path.write_text(source)
+        paths.append(path)
+    return paths
 
 
 def _manifest(digests: dict[str, str]) -> str:

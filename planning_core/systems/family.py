@@ -20,7 +20,13 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar, Optional
 
-from planning_core.integrators import Dynamics, compile_advance, compile_propagator, slice_count
+from planning_core.integrators import (
+    Dynamics,
+    advance_class,
+    advance_source,
+    compile_propagator,
+    slice_count,
+)
 from planning_core.spaces import StateSpace, Variable
 from planning_core.worlds.shapes import ConvexPolygon, Rect, body_polygon, place
 
@@ -314,14 +320,15 @@ class KinodynamicFamily(FamilySystem):
         return self._propagate(state, control, state_valid, slices_out)
 
     def advancer(self, body_free: Optional[Callable[[float, float, float], bool]] = None):
-        """``advance(state, control, kmax) -> (state, k)`` (integrators.compile_advance)
-        with the state validator's test fused in: the bounds, then
+        """``advance(state, control, kmax) -> (state, k)`` (integrators.advance_source)
+        with the state validator's test fused in: finite, the bounds, then
         ``body_free(x, y, theta)`` when given."""
-        condition = self.bounds_condition()
-        if body_free is not None:
-            condition = f"({condition}) and _free({', '.join(self.state_names[:3])})"
-        return compile_advance(self._dynamics, self.scheme, float(self.dt), condition,
-                               {"_free": body_free})
+        free_args = None if body_free is None else self.state_names[:3]
+        advance = advance_class(advance_source(self._dynamics, self.scheme, free_args))
+        variables = self.space.variables
+        return advance(float(self.dt), [float(value) for _, value in self._dynamics.constants],
+                       [v.low for v in variables], [v.high for v in variables],
+                       body_free).advance
 
     def reachable_controls(self, levels: int, k: int) -> list[tuple]:
         """RG-RRT's fixed reachable set: every combination of ``levels`` evenly
@@ -405,3 +412,18 @@ class GeometricFamily(FamilySystem):
         interpolate = self.space.interpolate
         return [interpolate(a, b, i / n) for i in range(n + 1)]
 
+
+def generated_sources() -> list[str]:
+    """The texts :meth:`KinodynamicFamily.advancer` runs, for every registered
+    kinodynamic family system and scheme, with and without a body: what the
+    compiled build compiles (tools/build_compiled.py)."""
+    from planning_core.integrators import SCHEMES
+    from planning_core.systems import SYSTEM_MODULES, load
+    texts = []
+    for name in SYSTEM_MODULES:
+        system = load(name)
+        if isinstance(system, KinodynamicFamily):
+            bodies = [None] + ([system.state_names[:3]] if system.occupies == "body" else [])
+            texts += [advance_source(system._dynamics, scheme, free_args)
+                      for scheme in SCHEMES for free_args in bodies]
+    return texts
