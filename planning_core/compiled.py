@@ -30,6 +30,7 @@ MODULES = (
     "rrt_cli.planners.blossom",
     "planning_core.nearest.kdtree",
     "planning_core.worlds.segment_tests",
+    "planning_core.worlds.body_tests",
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 

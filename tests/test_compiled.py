@@ -145,8 +145,8 @@ def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
 
 
 def test_a_world_with_compiled_tests_pickles():
-    """A world binds compiled segment tests; it pickles by its fields (a native
-    object's __init__ takes arguments pickle does not give)."""
+    """A world binds compiled segment and body tests; it pickles by its fields (a
+    native object's __init__ takes arguments pickle does not give)."""
     fresh_or_skip()
     probe = ("import pickle\nfrom planning_core.compiled import activate\nactivate()\n"
              "from planning_core.cli_args import parse_any_problem\n"
@@ -191,3 +191,16 @@ def test_the_build_used_the_pinned_flags():
     for flags in compiles:
         assert "-ffp-contract=off" in flags
         assert not {"-march=native", "-ffast-math", "-Ofast"} & set(flags)
+
+
+def test_the_compiled_body_test_answers_as_the_shapes_do():
+    """tests/planning_core/worlds/test_body_tests.py's seeded walks, with the compiled
+    build (the unit run imports the interpreted source)."""
+    fresh_or_skip()
+    probe = ("from planning_core.compiled import activate\nactivate()\n"
+             "from tests.planning_core.worlds.test_body_tests import check_random_walks\n"
+             "check_random_walks(seed=7)\n"
+             "import planning_core.worlds.body_tests as t\nprint(t.__file__)\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, env=_env(), timeout=120)
+    assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr

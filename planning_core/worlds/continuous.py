@@ -14,22 +14,19 @@ import math
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Union
 
+from planning_core.worlds.body_tests import BodyTest, Obstacles
+from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, SegmentTests
 from planning_core.worlds.shapes import (
     BBox,
     ConvexPolygon,
     Disc,
     Rect,
     Shape,
-    _edge_separates,
-    _poly_disc,
     inside_box,
     pair_test,
-    placed_coordinates,
-    point_distance,
     point_in,
     segment_gap,
 )
-from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, SegmentTests
 
 Obstacle = Union[Rect, Disc, ConvexPolygon]
 OUTSIDE_BOX = -1
@@ -46,6 +43,7 @@ class ContinuousWorld:
     _bboxes: tuple[BBox, ...] = field(init=False, repr=False, compare=False)
     _tests: dict = field(init=False, repr=False, compare=False)
     _segments: SegmentTests = field(init=False, repr=False, compare=False)
+    _bound: Obstacles = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.box is not None and not isinstance(self.box, Rect):
@@ -58,7 +56,9 @@ class ContinuousWorld:
         object.__setattr__(self, "obstacles", obstacles)
         object.__setattr__(self, "_bboxes", tuple(o.bbox for o in obstacles))
         object.__setattr__(self, "_tests", {})
-        object.__setattr__(self, "_segments", _segment_tests(self.box, obstacles))
+        segments, bound = _bind(self.box, obstacles)
+        object.__setattr__(self, "_segments", segments)
+        object.__setattr__(self, "_bound", bound)
 
     def __reduce__(self):
         # Pickled by its fields: the bound tests (compiled ones among them) are rebuilt.
@@ -133,19 +133,13 @@ class ContinuousWorld:
     def clearance(self, x: float, y: float) -> float:
         """Distance from the point to the nearest obstacle or box side (0 when it is
         in an obstacle or outside the box)."""
-        box = self.box
-        gap = math.inf if box is None else max(0.0, min(x - box.x0, box.x1 - x,
-                                                        y - box.y0, box.y1 - y))
-        for (ox0, oy0, ox1, oy1), obstacle in zip(self._bboxes, self.obstacles):
-            # The box's gap is a lower bound: an obstacle that cannot be nearer is skipped.
-            if max(ox0 - x, x - ox1) < gap and max(oy0 - y, y - oy1) < gap:
-                gap = min(gap, point_distance(obstacle, x, y))
-        return gap
+        return self._bound.clearance(x, y)
 
     def body_test(self, body: ConvexPolygon) -> Callable[[float, float, float], bool]:
         """``free(x, y, theta)``: the same answer as
         ``polygon_free(place(body, x, y, theta))``, the same float operations,
-        without building the polygon object; the hot path of every family car.
+        without building the polygon object; the hot path of every family car
+        (:class:`~planning_core.worlds.body_tests.BodyTest`, compiled).
 
         It also remembers a free disc: after a free pose it takes the clearance
         around (x, y) less the body's radius and a margin, and a later pose whose
@@ -153,46 +147,17 @@ class ContinuousWorld:
         keeps at least the margin, far above rounding, from every obstacle). The
         clearance grows at most as fast as (x, y) moves, so it is not recomputed
         while the last one plus the distance moved since leaves no room."""
-        pts = body.points
-        radius = max(math.hypot(px, py) for px, py in pts)
+        radius = max(math.hypot(px, py) for px, py in body.points)
         scale = max([abs(v) for o in self.obstacles for v in o.bbox]
                     + ([abs(v) for v in self.box.bbox] if self.box else []) + [radius, 1.0])
         margin = radius + CLEARANCE_MARGIN * scale
-        box = self.box.bbox if self.box is not None else (-math.inf, -math.inf, math.inf, math.inf)
-        checks = tuple(_obstacle_check(o) for o in self.obstacles)
-        placed, clearance = placed_coordinates, self.clearance
-        disc = [math.nan, math.nan, -1.0]  # centre and squared radius of the free disc
-        last = [math.nan, math.nan, 0.0]  # where the clearance was last measured, and it
-        hypot = math.hypot
-
-        def free(x: float, y: float, theta: float) -> bool:
-            dx, dy = x - disc[0], y - disc[1]
-            if dx * dx + dy * dy <= disc[2]:
-                return True
-            xs, ys = placed(pts, x, y, theta)
-            x0, y0, x1, y1 = min(xs), min(ys), max(xs), max(ys)
-            if not (x0 <= x1 and y0 <= y1 and box[0] <= x0 and x1 <= box[2]
-                    and box[1] <= y0 and y1 <= box[3]):
-                return False
-            hit = None
-            for ox0, oy0, ox1, oy1, meets, data in checks:
-                if ox0 <= x1 and x0 <= ox1 and oy0 <= y1 and y0 <= oy1:
-                    hit = hit or tuple(zip(xs, ys))
-                    if meets(hit, data):
-                        return False
-            if last[2] + hypot(x - last[0], y - last[1]) <= margin:
-                return True  # no room for a free disc here yet
-            gap = clearance(x, y)
-            last[:] = (x, y, gap)
-            if gap > margin:
-                disc[:] = (x, y, (gap - margin) ** 2)
-            return True
-
-        return free
+        return BodyTest(self._bound, body.points, margin).free
 
 
-def _segment_tests(box: Optional[Rect], obstacles: tuple[Obstacle, ...]) -> SegmentTests:
-    """The world bound for segment queries: per obstacle its kind, box and data."""
+def _bind(box: Optional[Rect],
+          obstacles: tuple[Obstacle, ...]) -> tuple[SegmentTests, Obstacles]:
+    """The world bound for segment queries and for point and body queries: per
+    obstacle its kind, box and data."""
     kinds, boxes, points, discs, gaps = [], [], [], [], []
     for obstacle in obstacles:
         boxes.append(obstacle.bbox)
@@ -210,27 +175,6 @@ def _segment_tests(box: Optional[Rect], obstacles: tuple[Obstacle, ...]) -> Segm
             kinds.append(POLYGON)
             points.append(obstacle.points)
             gaps[-1] = functools.partial(segment_gap, obstacle)
-    return SegmentTests(box.bbox if box is not None else None, kinds, boxes, points, discs,
-                        gaps)
-
-
-def _obstacle_check(obstacle: Obstacle) -> tuple:
-    """``(bbox..., meets, data)``: ``meets(points, data)`` is the pair test of a placed
-    counter-clockwise polygon's points against the obstacle (shapes' own predicates)."""
-    if isinstance(obstacle, Disc):
-        return (*obstacle.bbox, _meets_disc, (obstacle.cx, obstacle.cy, obstacle.r))
-    if isinstance(obstacle, Rect):
-        return (*obstacle.bbox, _meets_rect, obstacle.corners)
-    return (*obstacle.bbox, _meets_polygon, obstacle.points)
-
-
-def _meets_disc(points, disc) -> bool:
-    return _poly_disc(points, *disc)
-
-
-def _meets_rect(points, corners) -> bool:
-    return not _edge_separates(points, corners)
-
-
-def _meets_polygon(points, others) -> bool:
-    return not (_edge_separates(points, others) or _edge_separates(others, points))
+    bbox = box.bbox if box is not None else None
+    return (SegmentTests(bbox, kinds, boxes, points, discs, gaps),
+            Obstacles(bbox, kinds, boxes, points, discs))

@@ -26,11 +26,13 @@ import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence, Union
 
+from planning_core.worlds.body_tests import (SNAP, disc_distance, placed_coordinates,
+                                             polygon_distance, rect_distance)
+from planning_core.worlds.body_tests import poly_disc as _poly_disc
 from planning_core.worlds.segment_tests import (boxes_overlap, corner_gap, segment_disc_gap,
                                                 segment_meets_disc, segment_meets_polygon,
                                                 segment_meets_rect, segment_rect_gap)
 from planning_core.worlds.segment_tests import edge_separates as _edge_separates
-from planning_core.worlds.segment_tests import near_segment as _near_segment
 from planning_core.worlds.segment_tests import segment_distance as _segment_distance
 from planning_core.worlds.segment_tests import strictly_one_side as _strictly_one_side
 
@@ -39,8 +41,6 @@ BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
 # Validation only: consecutive edges with |cross| <= this * |e1| * |e2| are collinear.
 COLLINEAR_RTOL = 1e-12
-# place(): |cos| or |sin| below this is 0, so quarter turns are exact.
-SNAP = 1e-12
 
 
 def _require_finite(what: str, values: Iterable[float]) -> None:
@@ -227,45 +227,12 @@ def place(polygon: ConvexPolygon, x: float, y: float, theta: float) -> ConvexPol
     return ConvexPolygon._trusted(tuple(zip(xs, ys)), (min(xs), min(ys), max(xs), max(ys)))
 
 
-def placed_coordinates(points: Sequence[Point], x: float, y: float,
-                       theta: float) -> tuple[list[float], list[float]]:
-    """The x and the y coordinates of ``points`` placed as :func:`place` does."""
-    try:
-        c, s = math.cos(theta), math.sin(theta)
-    except ValueError:  # an infinite angle: every vertex NaN, which no world accepts
-        c = s = math.nan
-    if abs(c) < SNAP:
-        c = 0.0
-    if abs(s) < SNAP:
-        s = 0.0
-    return ([x + c * px - s * py for px, py in points],
-            [y + s * px + c * py for px, py in points])
-
-
 # --- Primitive predicates -----------------------------------------------------------
 
 
 def _box_within(inner: BBox, outer: BBox) -> bool:
     return (outer[0] <= inner[0] and inner[2] <= outer[2]
             and outer[1] <= inner[1] and inner[3] <= outer[3])
-
-
-def _poly_disc(pts: Sequence[Point], cx: float, cy: float, r: float) -> bool:
-    """Closed polygon and closed disc meet: centre inside, or a boundary point within r."""
-    r2 = r * r
-    inside = True
-    ax, ay = pts[-1]
-    for bx, by in pts:
-        ex, ey = bx - ax, by - ay
-        cr = ex * (cy - ay) - ey * (cx - ax)
-        if cr < 0.0:  # centre strictly outside this edge's line
-            inside = False
-            if cr * cr > r2 * (ex * ex + ey * ey):
-                return False  # the whole disc is strictly beyond the line
-            if _near_segment(ax, ay, bx, by, cx, cy, r2):
-                return True
-        ax, ay = bx, by
-    return inside
 
 
 # --- Pairwise tests (both shapes closed; touching is an intersection) ---------------
@@ -389,21 +356,12 @@ def point_distance(shape: Shape, x: float, y: float) -> float:
 
     Rounded as floats are: callers that build a certainty on it keep a margin."""
     if isinstance(shape, Disc):
-        return max(0.0, math.hypot(x - shape.cx, y - shape.cy) - shape.r)
+        return disc_distance(shape.cx, shape.cy, shape.r, x, y)
     if isinstance(shape, Rect):
-        return math.hypot(max(shape.x0 - x, 0.0, x - shape.x1),
-                          max(shape.y0 - y, 0.0, y - shape.y1))
+        return rect_distance(shape.bbox, x, y)
     if isinstance(shape, Segment):
         return _segment_distance(shape.x0, shape.y0, shape.x1, shape.y1, x, y)
-    if point_in(shape, x, y):
-        return 0.0
-    pts = shape.points
-    best = math.inf
-    (ax, ay) = pts[-1]
-    for bx, by in pts:
-        best = min(best, _segment_distance(ax, ay, bx, by, x, y))
-        ax, ay = bx, by
-    return best
+    return polygon_distance(shape.points, x, y)
 
 
 # --- Gaps (distances between disjoint shapes) ---------------------------------------

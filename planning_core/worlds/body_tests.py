@@ -1,0 +1,212 @@
+"""A placed body (a car's footprint) against a world's obstacles, on plain floats.
+
+Placing a body's points, the polygon-against-disc test and a point's distance to
+a rect, disc or polygon live here as plain-float functions that
+:mod:`planning_core.worlds.shapes` imports (one copy), with :class:`BodyTest`,
+the per-slice collision test of every family car, so that it runs compiled
+(mypyc, ``planning_core.compiled``). :class:`Obstacles` binds a world's box and
+obstacles once (for :class:`BodyTest` and ``ContinuousWorld.clearance``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+from planning_core.worlds.segment_tests import (DISC, RECT, edge_separates, near_segment,
+                                                segment_distance)
+
+Point = tuple[float, float]
+BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
+
+SNAP = 1e-12
+"""place(): |cos| or |sin| below this is 0, so quarter turns are exact."""
+
+
+def placed_coordinates(points: tuple[Point, ...], x: float, y: float,
+                       theta: float) -> tuple[list[float], list[float]]:
+    """The x and the y coordinates of ``points`` rotated by ``theta`` about the
+    origin, then translated by ``(x, y)`` (``shapes.place``; SNAP applied)."""
+    try:
+        c, s = math.cos(theta), math.sin(theta)
+    except ValueError:  # an infinite angle: every vertex NaN, which no world accepts
+        c = s = math.nan
+    if abs(c) < SNAP:
+        c = 0.0
+    if abs(s) < SNAP:
+        s = 0.0
+    return ([x + c * px - s * py for px, py in points],
+            [y + s * px + c * py for px, py in points])
+
+
+def poly_disc(pts: Sequence[Point], cx: float, cy: float, r: float) -> bool:
+    """Closed polygon and closed disc meet: centre inside, or a boundary point within r."""
+    r2 = r * r
+    inside = True
+    ax, ay = pts[-1]
+    for bx, by in pts:
+        ex, ey = bx - ax, by - ay
+        cr = ex * (cy - ay) - ey * (cx - ax)
+        if cr < 0.0:  # centre strictly outside this edge's line
+            inside = False
+            if cr * cr > r2 * (ex * ex + ey * ey):
+                return False  # the whole disc is strictly beyond the line
+            if near_segment(ax, ay, bx, by, cx, cy, r2):
+                return True
+        ax, ay = bx, by
+    return inside
+
+
+# Two-argument min()/max() below compare as the builtins with more arguments do
+# (the next value replaces the one so far when strictly less/greater), so NaNs and
+# signed zeros come out the same; mypyc compiles only the two-argument form natively.
+
+
+def disc_distance(cx: float, cy: float, r: float, x: float, y: float) -> float:
+    """Distance from the point to the closed disc (0 inside or on it)."""
+    return max(0.0, math.hypot(x - cx, y - cy) - r)
+
+
+def rect_distance(rect: BBox, x: float, y: float) -> float:
+    """Distance from the point to the closed rect (0 inside or on it)."""
+    x0, y0, x1, y1 = rect
+    return math.hypot(max(max(x0 - x, 0.0), x - x1), max(max(y0 - y, 0.0), y - y1))
+
+
+def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
+    """Distance from the point to the closed CCW polygon (0 inside or on it)."""
+    if not edge_separates(points, ((x, y),)):
+        return 0.0
+    best = math.inf
+    ax, ay = points[-1]
+    for bx, by in points:
+        best = min(best, segment_distance(ax, ay, bx, by, x, y))
+        ax, ay = bx, by
+    return best
+
+
+def _extent(values: list[float]) -> tuple[float, float]:
+    """``(min(values), max(values))``, compared as the builtins do (a NaN kept where they keep it)."""
+    lo = hi = values[0]
+    for v in values:
+        if v < lo:
+            lo = v
+        if v > hi:
+            hi = v
+    return lo, hi
+
+
+class Obstacles:
+    """A world's box and obstacles, bound once for point and body queries."""
+
+    def __init__(self, box: BBox | None, kinds: list[int], boxes: list[BBox],
+                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]]):
+        self.has_box = box is not None
+        self.box: BBox = box if box is not None else (-math.inf, -math.inf, math.inf, math.inf)
+        self.kinds = kinds
+        """Per obstacle: RECT, DISC or POLYGON (``segment_tests``' kinds)."""
+        self.boxes = boxes
+        """Per obstacle: its bounding box."""
+        self.points = points
+        """Per obstacle: a rect's corners or a polygon's points (CCW); () for a disc."""
+        self.discs = discs
+        """Per obstacle: a disc's (cx, cy, r); zeros for the others."""
+
+    def clearance(self, x: float, y: float) -> float:
+        """Distance from the point to the nearest obstacle or box side (0 when it is
+        in an obstacle or outside the box)."""
+        box = self.box
+        gap = math.inf
+        if self.has_box:  # min() of the four, as the builtin compares them
+            gap = max(0.0, min(min(min(x - box[0], box[2] - x), y - box[1]), box[3] - y))
+        for i in range(len(self.kinds)):
+            ox0, oy0, ox1, oy1 = self.boxes[i]
+            # The gap so far is a lower bound: an obstacle that cannot be nearer is skipped.
+            if max(ox0 - x, x - ox1) < gap and max(oy0 - y, y - oy1) < gap:
+                gap = min(gap, self.distance(i, x, y))
+        return gap
+
+    def distance(self, i: int, x: float, y: float) -> float:
+        """Distance from the point to obstacle ``i``."""
+        kind = self.kinds[i]
+        if kind == DISC:
+            cx, cy, r = self.discs[i]
+            return disc_distance(cx, cy, r, x, y)
+        if kind == RECT:
+            return rect_distance(self.boxes[i], x, y)
+        return polygon_distance(self.points[i], x, y)
+
+
+class BodyTest:
+    """A body's points bound to a world (:class:`Obstacles`): :meth:`free` is the
+    per-slice collision test of a car, with the free disc it remembers."""
+
+    def __init__(self, world: Obstacles, body: tuple[Point, ...], margin: float):
+        self.world = world
+        self.body = body
+        """The body's points in its own frame (CCW)."""
+        self.box: BBox = world.box
+        self.kinds = world.kinds
+        self.boxes = world.boxes
+        self.points = world.points
+        self.discs = world.discs
+        self.margin = margin
+        """The body's radius plus a margin far above rounding."""
+        self.disc_x = math.nan
+        self.disc_y = math.nan
+        self.disc_r2 = -1.0
+        """The free disc: centre and squared radius (none yet)."""
+        self.last_x = math.nan
+        self.last_y = math.nan
+        self.last_gap = 0.0
+        """Where the clearance was last measured, and it."""
+
+    def free(self, x: float, y: float, theta: float) -> bool:
+        """``polygon_free(place(body, x, y, theta))`` by the same float operations,
+        or True at once inside the free disc (see ``ContinuousWorld.body_test``) for
+        a finite angle; a free pose at an infinite (x, y) (no box) leaves no disc."""
+        dx, dy = x - self.disc_x, y - self.disc_y
+        if dx * dx + dy * dy <= self.disc_r2 and theta - theta == 0.0:  # a finite angle
+            return True
+        xs, ys = placed_coordinates(self.body, x, y, theta)
+        x0, x1 = _extent(xs)
+        y0, y1 = _extent(ys)
+        box = self.box
+        if not (x0 <= x1 and y0 <= y1 and box[0] <= x0 and x1 <= box[2]
+                and box[1] <= y0 and y1 <= box[3]):
+            return False
+        if self._meets_any(xs, ys, x0, y0, x1, y1):
+            return False
+        if not (abs(x) < math.inf and abs(y) < math.inf):
+            return True  # free far out (no box): no disc centred there
+        margin = self.margin
+        if self.last_gap + math.hypot(x - self.last_x, y - self.last_y) <= margin:
+            return True  # no room for a free disc here yet
+        gap = self.world.clearance(x, y)
+        self.last_x, self.last_y, self.last_gap = x, y, gap
+        if gap > margin:
+            self.disc_x, self.disc_y, self.disc_r2 = x, y, (gap - margin) ** 2
+        return True
+
+    def _meets_any(self, xs: list[float], ys: list[float],
+                   x0: float, y0: float, x1: float, y1: float) -> bool:
+        """The placed points' polygon meets some obstacle (bounding boxes first)."""
+        pts: list[Point] | None = None  # built for the first obstacle whose box overlaps
+        for i in range(len(self.kinds)):
+            ox0, oy0, ox1, oy1 = self.boxes[i]
+            if ox0 <= x1 and x0 <= ox1 and oy0 <= y1 and y0 <= oy1:
+                if pts is None:
+                    pts = [(xs[j], ys[j]) for j in range(len(xs))]
+                if self._meets(i, pts):
+                    return True
+        return False
+
+    def _meets(self, i: int, pts: list[Point]) -> bool:
+        kind = self.kinds[i]
+        if kind == DISC:
+            cx, cy, r = self.discs[i]
+            return poly_disc(pts, cx, cy, r)
+        others = self.points[i]
+        if kind == RECT:  # the rect's axes: the bounding boxes already overlap
+            return not edge_separates(pts, others)
+        return not (edge_separates(pts, others) or edge_separates(others, pts))
