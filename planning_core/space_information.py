@@ -21,6 +21,7 @@ from planning_core.grid_space_information import (  # noqa: F401 - the grid's, r
     grid_space_information,
 )
 from planning_core.interrupt import Stop
+from planning_core.samplers import randint
 
 AnySpaceInformation = Any
 """What planners annotate ``si`` with: any SpaceInformation (grid, kinoplan, geometric),
@@ -48,10 +49,12 @@ class KinoplanSpaceInformation:
         self.closeness = self.space.distance
         self._sample = self.space.sample_uniform
         self.duration = (system.kmin, system.kmax) if system.kinodynamic else None
+        self.sample_target = self._sample  # the method below, bound (the hot path)
         if system.kinodynamic:
             # The validity test fused into the integration loop (the hot path).
             self.advance = system.advancer(body_test(system, self.world))
             self.propagate_valid = self._propagate_valid_by(self.advance)
+            self.sample_control = system.sample_control
 
     def propagate_valid(self, state, control):
         """Where ``control`` leads from ``state`` if every slice is valid; else None.
@@ -73,7 +76,7 @@ class KinoplanSpaceInformation:
         system = self.system
         values = system.sample_values(rng)
         kmin, kmax = self.duration
-        end, k = self.advance(state, values, rng.randint(kmin, kmax))
+        end, k = self.advance(state, values, randint(rng, kmin, kmax))
         return (end, (*values, k)) if k >= kmin else None
 
     def advance(self, state, control, kmax: int):

@@ -21,6 +21,8 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from random import Random
 
+from planning_core.samplers import BoxSampler
+
 TAU = 2.0 * math.pi
 
 State = tuple[float, ...]
@@ -76,6 +78,9 @@ class StateSpace:
         # Shadow the reference methods below with the same arithmetic, unrolled.
         object.__setattr__(self, "distance", compile_distance(variables, groups))
         object.__setattr__(self, "interpolate", compile_interpolate(variables))
+        if all(v.angle or (math.isfinite(v.low) and math.isfinite(v.high)) for v in variables):
+            sampler = BoxSampler([v.low for v in variables], [v.high - v.low for v in variables])
+            object.__setattr__(self, "sample_uniform", sampler.sample)
 
     def __reduce__(self):
         # The compiled function cannot be pickled; rebuild it from the fields.
@@ -206,6 +211,7 @@ class StateSpace:
         """A uniform state: angles in [-pi, pi), the rest in [low, high).
 
         One ``rng.random()`` per variable, in order, so a seed fixes the sample.
+        (A bounded space shadows this with ``samplers.BoxSampler``: the same draws.)
         """
         out = []
         for v in self.variables:

@@ -27,6 +27,7 @@ from planning_core.integrators import (
     compile_propagator,
     slice_count,
 )
+from planning_core.samplers import BoxSampler, ControlSampler
 from planning_core.spaces import StateSpace, Variable
 from planning_core.worlds.shapes import ConvexPolygon, Rect, body_polygon, place
 
@@ -254,6 +255,10 @@ class KinodynamicFamily(FamilySystem):
                 self._set(name, default)
         self._set("controls", tuple((float(lo), float(hi)) for lo, hi in self.controls))
         self._check_controls()
+        # The two methods below, shadowed by compiled samplers making the same draws.
+        values = BoxSampler([lo for lo, _ in self.controls], [hi - lo for lo, hi in self.controls])
+        self._set("sample_values", values.sample)
+        self._set("sample_control", ControlSampler(values, self.kmin, self.kmax).sample)
         dynamics = Dynamics(self.state_names, held, self.rates,
                             tuple(n in self.angle_names for n in self.state_names),
                             tuple((p, getattr(self, p)) for p in self.params))

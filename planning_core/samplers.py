@@ -1,0 +1,46 @@
+"""Uniform samples on plain floats, compiled (mypyc, ``planning_core.compiled``):
+the kinoplan planners draw a target state and a control every iteration.
+
+The draws are the references' own, in the same order: one ``rng.random()`` per
+coordinate, ``low + span * r`` (``StateSpace.sample_uniform``,
+``KinodynamicFamily.sample_values``), then K as ``rng.randint`` draws it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def randint(rng: Any, a: int, b: int) -> int:
+    """``rng.randint(a, b)`` for ``a <= b``: the same ``getrandbits`` draws
+    (CPython's ``randrange`` by rejection; a test holds it to ``rng.randint``)."""
+    n = b - a + 1
+    k = n.bit_length()
+    r: int = rng.getrandbits(k)
+    while r >= n:
+        r = rng.getrandbits(k)
+    return a + r
+
+
+class BoxSampler:
+    """Uniform in ``[lows[i], lows[i] + spans[i])`` per coordinate, in order."""
+
+    def __init__(self, lows: list[float], spans: list[float]) -> None:
+        self.lows = lows
+        self.spans = spans
+
+    def sample(self, rng: Any) -> tuple[float, ...]:
+        lows, spans = self.lows, self.spans
+        return tuple([lows[i] + spans[i] * rng.random() for i in range(len(lows))])
+
+
+class ControlSampler:
+    """Held values from a :class:`BoxSampler`, then K in ``[kmin, kmax]``."""
+
+    def __init__(self, values: BoxSampler, kmin: int, kmax: int) -> None:
+        self.values = values
+        self.kmin = kmin
+        self.kmax = kmax
+
+    def sample(self, rng: Any) -> tuple:
+        return (*self.values.sample(rng), randint(rng, self.kmin, self.kmax))
