@@ -4,8 +4,8 @@ Placing a body's points, the polygon-against-disc test and a point's distance to
 a rect, disc or polygon live here as plain-float functions that
 :mod:`planning_core.worlds.shapes` imports (one copy), with :class:`BodyTest`,
 the per-slice collision test of every family car, so that it runs compiled
-(mypyc, ``planning_core.compiled``). :class:`Obstacles` binds a world's box and
-obstacles once (for :class:`BodyTest` and ``ContinuousWorld.clearance``).
+(mypyc, ``planning_core.compiled``), and :func:`clearance`, a point's distance to
+a world's :class:`~planning_core.worlds.segment_tests.Obstacles`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,14 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
-from planning_core.worlds.segment_tests import (DISC, RECT, edge_separates, near_segment,
-                                                segment_distance)
+from planning_core.worlds.segment_tests import (
+    DISC,
+    RECT,
+    Obstacles,
+    edge_separates,
+    near_segment,
+    segment_distance,
+)
 
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
@@ -96,45 +102,30 @@ def _extent(values: list[float]) -> tuple[float, float]:
     return lo, hi
 
 
-class Obstacles:
-    """A world's box and obstacles, bound once for point and body queries."""
+def clearance(world: Obstacles, x: float, y: float) -> float:
+    """Distance from the point to the world's nearest obstacle or box side (0 when
+    it is in an obstacle or outside the box)."""
+    box = world.box
+    gap = math.inf
+    if world.has_box:  # min() of the four, as the builtin compares them
+        gap = max(0.0, min(min(min(x - box[0], box[2] - x), y - box[1]), box[3] - y))
+    for i in range(len(world.kinds)):
+        ox0, oy0, ox1, oy1 = world.boxes[i]
+        # The gap so far is a lower bound: an obstacle that cannot be nearer is skipped.
+        if max(ox0 - x, x - ox1) < gap and max(oy0 - y, y - oy1) < gap:
+            gap = min(gap, obstacle_distance(world, i, x, y))
+    return gap
 
-    def __init__(self, box: BBox | None, kinds: list[int], boxes: list[BBox],
-                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]]):
-        self.has_box = box is not None
-        self.box: BBox = box if box is not None else (-math.inf, -math.inf, math.inf, math.inf)
-        self.kinds = kinds
-        """Per obstacle: RECT, DISC or POLYGON (``segment_tests``' kinds)."""
-        self.boxes = boxes
-        """Per obstacle: its bounding box."""
-        self.points = points
-        """Per obstacle: a rect's corners or a polygon's points (CCW); () for a disc."""
-        self.discs = discs
-        """Per obstacle: a disc's (cx, cy, r); zeros for the others."""
 
-    def clearance(self, x: float, y: float) -> float:
-        """Distance from the point to the nearest obstacle or box side (0 when it is
-        in an obstacle or outside the box)."""
-        box = self.box
-        gap = math.inf
-        if self.has_box:  # min() of the four, as the builtin compares them
-            gap = max(0.0, min(min(min(x - box[0], box[2] - x), y - box[1]), box[3] - y))
-        for i in range(len(self.kinds)):
-            ox0, oy0, ox1, oy1 = self.boxes[i]
-            # The gap so far is a lower bound: an obstacle that cannot be nearer is skipped.
-            if max(ox0 - x, x - ox1) < gap and max(oy0 - y, y - oy1) < gap:
-                gap = min(gap, self.distance(i, x, y))
-        return gap
-
-    def distance(self, i: int, x: float, y: float) -> float:
-        """Distance from the point to obstacle ``i``."""
-        kind = self.kinds[i]
-        if kind == DISC:
-            cx, cy, r = self.discs[i]
-            return disc_distance(cx, cy, r, x, y)
-        if kind == RECT:
-            return rect_distance(self.boxes[i], x, y)
-        return polygon_distance(self.points[i], x, y)
+def obstacle_distance(world: Obstacles, i: int, x: float, y: float) -> float:
+    """Distance from the point to the world's obstacle ``i``."""
+    kind = world.kinds[i]
+    if kind == DISC:
+        cx, cy, r = world.discs[i]
+        return disc_distance(cx, cy, r, x, y)
+    if kind == RECT:
+        return rect_distance(world.boxes[i], x, y)
+    return polygon_distance(world.points[i], x, y)
 
 
 class BodyTest:
@@ -182,7 +173,7 @@ class BodyTest:
         margin = self.margin
         if self.last_gap + math.hypot(x - self.last_x, y - self.last_y) <= margin:
             return True  # no room for a free disc here yet
-        gap = self.world.clearance(x, y)
+        gap = clearance(self.world, x, y)
         self.last_x, self.last_y, self.last_gap = x, y, gap
         if gap > margin:
             self.disc_x, self.disc_y, self.disc_r2 = x, y, (gap - margin) ** 2

@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Union
 
-from planning_core.worlds.body_tests import BodyTest, Obstacles
-from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, SegmentTests
+from planning_core.worlds.body_tests import BodyTest, clearance
+from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, Obstacles, SegmentTests
 from planning_core.worlds.shapes import (
     BBox,
     ConvexPolygon,
@@ -133,7 +133,7 @@ class ContinuousWorld:
     def clearance(self, x: float, y: float) -> float:
         """Distance from the point to the nearest obstacle or box side (0 when it is
         in an obstacle or outside the box)."""
-        return self._bound.clearance(x, y)
+        return clearance(self._bound, x, y)
 
     def body_test(self, body: ConvexPolygon) -> Callable[[float, float, float], bool]:
         """``free(x, y, theta)``: the same answer as
@@ -175,6 +175,5 @@ def _bind(box: Optional[Rect],
             kinds.append(POLYGON)
             points.append(obstacle.points)
             gaps[-1] = functools.partial(segment_gap, obstacle)
-    bbox = box.bbox if box is not None else None
-    return (SegmentTests(bbox, kinds, boxes, points, discs, gaps),
-            Obstacles(bbox, kinds, boxes, points, discs))
+    bound = Obstacles(box.bbox if box is not None else None, kinds, boxes, points, discs)
+    return SegmentTests(bound, gaps), bound

@@ -124,12 +124,12 @@ def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: Sequence[Poi
     return best
 
 
-class SegmentTests:
-    """A world's box and obstacles, bound once for segment queries."""
+class Obstacles:
+    """A world's box and obstacles, bound once on plain floats (for segment,
+    point and body queries)."""
 
     def __init__(self, box: Optional[BBox], kinds: list[int], boxes: list[BBox],
-                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]],
-                 polygon_gap: list[Optional[Callable[[float, float, float, float], float]]]):
+                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]]):
         self.has_box = box is not None
         self.box: BBox = box if box is not None else (-math.inf, -math.inf, math.inf, math.inf)
         self.kinds = kinds
@@ -140,6 +140,17 @@ class SegmentTests:
         """Per obstacle: a rect's corners or a polygon's points (CCW); () for a disc."""
         self.discs = discs
         """Per obstacle: a disc's (cx, cy, r); zeros for the others."""
+
+
+class SegmentTests:
+    """Segment queries against a world's :class:`Obstacles` (its fields read
+    straight off, for native access in the loops)."""
+
+    def __init__(self, world: Obstacles,
+                 polygon_gap: list[Optional[Callable[[float, float, float, float], float]]]):
+        self.has_box, self.box = world.has_box, world.box
+        self.kinds, self.boxes = world.kinds, world.boxes
+        self.points, self.discs = world.points, world.discs
         self.polygon_gap = polygon_gap
         """Per obstacle: a polygon's gap function (the shapes' own); None for the others."""
 
