@@ -263,13 +263,20 @@ def compile_distance(variables: Sequence[Variable],
     ``metric x,y 0.7 theta 0.3`` the body is ``d0 = b[0] - a[0]; d1 = ...;
     d2 = _rem(b[2] - a[2], TAU); return W0 * _sqrt(d0 * d0 + d1 * d1) + W1 * abs(d2)``.
     """
-    lines = ["def distance(a, b):"]
+    lines = ["def distance(a, b):", *distance_lines(variables, groups)]
+    namespace = {"_rem": math.remainder}
+    return compile_metric_sum("distance", lines, groups, "d", namespace)
+
+
+def distance_lines(variables: Sequence[Variable], groups: Sequence[Group]) -> list[str]:
+    """:func:`compile_distance`'s body before the sum: ``d{i}``, each variable's
+    difference (an angle's the shorter way round)."""
+    lines = []
     for indices, _ in groups:
         for i in indices:
             diff = f"b[{i}] - a[{i}]"
             lines.append(f"    d{i} = _rem({diff}, TAU)" if variables[i].angle else f"    d{i} = {diff}")
-    namespace = {"_rem": math.remainder}
-    return compile_metric_sum("distance", lines, groups, "d", namespace)
+    return lines
 
 
 def compile_interpolate(variables: Sequence[Variable]) -> Callable[[State, State, float], State]:
@@ -301,15 +308,21 @@ def compile_metric_sum(name: str, lines: list[str], groups, prefix: str,
     variable ``i`` with the metric's sum over groups, ``W0 * _sqrt(d0 * d0 + d1 *
     d1) + W1 * abs(d2)``, then compile it and return the function ``name``. (Generated
     once per space, as planners call it in inner loops; docs/parameter-history.md.)"""
-    terms = []
     namespace.update(_sqrt=math.sqrt, TAU=TAU)
-    for k, (indices, weight) in enumerate(groups):
-        namespace[f"W{k}"] = weight
+    namespace.update((f"W{k}", weight) for k, (_, weight) in enumerate(groups))
+    lines = lines + [f"    return {metric_sum(groups, prefix)}"]
+    exec("\n".join(lines), namespace)  # noqa: S102 - source built from ints and names only
+    return namespace[name]
+
+
+def metric_sum(groups, prefix: str) -> str:
+    """The metric's sum over groups of the per-variable terms ``{prefix}{i}``, with
+    the weights as names: ``W0 * _sqrt(d0 * d0 + d1 * d1) + W1 * abs(d2)``."""
+    terms = []
+    for k, (indices, _) in enumerate(groups):
         if len(indices) == 1:
             terms.append(f"W{k} * abs({prefix}{indices[0]})")
         else:
             squares = " + ".join(f"{prefix}{i} * {prefix}{i}" for i in indices)
             terms.append(f"W{k} * _sqrt({squares})")
-    lines = lines + [f"    return {' + '.join(terms) if terms else '0.0'}"]
-    exec("\n".join(lines), namespace)  # noqa: S102 - source built from ints and names only
-    return namespace[name]
+    return " + ".join(terms) if terms else "0.0"

@@ -110,9 +110,10 @@ def test_a_fresh_build_is_what_runs():
                for file in files), files
 
 
-def test_the_family_runs_its_generated_slice_loops_compiled():
-    """Every generated text the planners run is in the build, and a planner gets it
-    (an edited generator without a rebuild would run its texts interpreted)."""
+def test_the_family_runs_its_generated_code_compiled():
+    """Every generated text the planners run (slice loops, kd-tree metrics) is in
+    the build, and a planner gets it (an edited generator without a rebuild would
+    run its texts interpreted); the compiled metric measures as the space does."""
     fresh_or_skip()
     probe = ("from planning_core import compiled\ncompiled.activate()\n"
              "from planning_core.systems.family import generated_sources\n"
@@ -121,8 +122,14 @@ def test_the_family_runs_its_generated_slice_loops_compiled():
              "import sys\nmodules = [compiled.generated_module(t) for t in generated_sources()]\n"
              "print(*(m.__file__ if m else 'missing' for m in modules))\n"
              "p = parse_any_problem(open('benchmarks/problems/family/car2-corridors.kp').read())\n"
-             "print(sys.modules[type(kinoplan_space_information(p).advance.__self__).__module__]"
-             ".__file__)\n")
+             "si = kinoplan_space_information(p)\n"
+             "print(sys.modules[type(si.advance.__self__).__module__].__file__)\n"
+             "from planning_core.nearest.kdtree import KDTree\nimport random\n"
+             "metric, rng = KDTree(si.space)._metric, random.Random(1)\n"
+             "print(sys.modules[type(metric).__module__].__file__)\n"
+             "pairs = [(si.sample_target(rng), si.sample_target(rng)) for _ in range(3000)]\n"
+             "assert all(metric.distance(a, b).hex() == si.space.distance(a, b).hex()"
+             " for a, b in pairs)\n")
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           cwd=ROOT, env=_env(), timeout=60)
     files = done.stdout.split()

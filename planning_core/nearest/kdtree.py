@@ -28,7 +28,15 @@ from collections.abc import Callable, Sequence
 from types import SimpleNamespace
 from typing import cast
 
-from planning_core.spaces import TAU, State, StateSpace, compile_metric_sum
+from planning_core import compiled
+from planning_core.spaces import (
+    TAU,
+    State,
+    StateSpace,
+    compile_metric_sum,
+    distance_lines,
+    metric_sum,
+)
 
 COMPILED = not __file__.endswith(".py")
 """True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
@@ -53,7 +61,7 @@ class KDTree:
         self._points: list[State] = []
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
         # A native object in the compiled build, so that its methods are direct calls.
-        self._metric: BoxMetric = BoxMetric(space) if COMPILED else _generated_metric(space)
+        self._metric: BoxMetric = _compiled_metric(space) if COMPILED else _generated_metric(space)
         weight = {i: w for indices, w in space.groups for i in indices}
         # Only axes the metric weighs are worth splitting on.
         self._axes = tuple(i for i in sorted(weight) if weight[i] > 0.0)
@@ -454,11 +462,51 @@ def compile_box_bound(space: StateSpace) -> Callable[[State, list, list, float],
     like it term by term (a one-axis group ``W * gap``, others ``W *
     sqrt(sum of squares)``), so float rounding keeps bound <= distance.
     """
-    lines = ["def bound(q, lo, hi, slack):"]
+    lines = ["def bound(q, lo, hi, slack):", *_bound_lines(space)]
+    return compile_metric_sum("bound", lines, space.groups, "g", {})
+
+
+def _bound_lines(space: StateSpace) -> list[str]:
+    """:func:`compile_box_bound`'s body before the sum: ``g{i}``, each axis's gap."""
+    lines: list[str] = []
     for indices, _ in space.groups:
         for i in indices:
             lines += _angle_gap(i) if space.variables[i].angle else _real_gap(i)
-    return compile_metric_sum("bound", lines, space.groups, "g", {})
+    return lines
+
+
+def metric_source(space: StateSpace) -> str:
+    """The text of a module whose ``Metric(space)``, a :class:`BoxMetric`, measures
+    and bounds with the generated functions' lines (the same float operations), the
+    weights its fields: the compiled build compiles the texts of the registered
+    systems' spaces, and a compiled kd-tree uses one when the build holds its text
+    (unrolled, they beat BoxMetric's loops; docs/hot-paths.md)."""
+    weights = [f"W{k}" for k in range(len(space.groups))]
+    fields = [f"        self.{w}: float = space.groups[{k}][1]" for k, w in enumerate(weights)]
+    load = [f"        {name} = self.{name}" for name in [*weights, "TAU"]]
+    indent = ["    " + line for line in distance_lines(space.variables, space.groups)]
+    gaps = ["    " + line for line in _bound_lines(space)]
+    return "\n".join([
+        "from __future__ import annotations",
+        "from math import pi, remainder as _rem, sqrt as _sqrt",
+        "from typing import Any",
+        "from planning_core.nearest.kdtree import BoxMetric",
+        "", "", "class Metric(BoxMetric):",
+        "    def __init__(self, space: Any) -> None:",
+        "        super().__init__(space)", *fields, "        self.TAU: float = 2.0 * pi",
+        "",
+        "    def distance(self, a: tuple[float, ...], b: tuple[float, ...]) -> float:",
+        *load, *indent, f"        return {metric_sum(space.groups, 'd')}",
+        "",
+        "    def bound(self, q: tuple[float, ...], lo: list[float], hi: list[float],",
+        "              slack: float) -> float:",
+        *load, *gaps, f"        return {metric_sum(space.groups, 'g')}", ""])
+
+
+def _compiled_metric(space: StateSpace) -> BoxMetric:
+    """The build's ``Metric`` of this space's :func:`metric_source`, else a BoxMetric."""
+    module = compiled.generated_module(metric_source(space))
+    return BoxMetric(space) if module is None else module.Metric(space)
 
 
 def _real_gap(i: int) -> list[str]:

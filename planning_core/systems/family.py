@@ -419,16 +419,20 @@ class GeometricFamily(FamilySystem):
 
 
 def generated_sources() -> list[str]:
-    """The texts :meth:`KinodynamicFamily.advancer` runs, for every registered
-    kinodynamic family system and scheme, with and without a body: what the
-    compiled build compiles (tools/build_compiled.py)."""
+    """The generated texts the planners run for every registered family system:
+    the kinodynamic ones' fused slice loops (:meth:`KinodynamicFamily.advancer`, each
+    scheme, with and without a body) and every system's kd-tree metric
+    (``kdtree.metric_source``): what the compiled build compiles (tools/build_compiled.py)."""
     from planning_core.integrators import SCHEMES
+    from planning_core.nearest.kdtree import metric_source
     from planning_core.systems import SYSTEM_MODULES, load
     texts = []
     for name in SYSTEM_MODULES:
         system = load(name)
+        if isinstance(system, FamilySystem):
+            texts.append(metric_source(system.space))
         if isinstance(system, KinodynamicFamily):
             bodies = [None] + ([system.state_names[:3]] if system.occupies == "body" else [])
             texts += [advance_source(system._dynamics, scheme, free_args)
                       for scheme in SCHEMES for free_args in bodies]
-    return texts
+    return list(dict.fromkeys(texts))  # systems may share a text
