@@ -43,6 +43,7 @@ DISABLE_VARIABLE = "RRT_INTERPRETED"
 """Set to 1 in the environment to run interpreted although the build is fresh."""
 
 state = "interpreted: activate() was not called"
+_manifest_fields: dict = {}  # the last manifest why_not_fresh read
 """What the last :func:`activate` found: ``compiled (...)`` or ``interpreted: why``."""
 
 
@@ -67,12 +68,18 @@ def source_digest(path: str) -> str:
 
 
 GENERATED_PREFIX = "rrt_generated_"
+generated_names: frozenset = frozenset()
+"""The generated modules the build in use holds (its manifest's ``generated`` line)."""
 
 
 def generated_name(source: str) -> str:
-    """The module name of generated source (integrators.advance_source): named by
-    its digest, so a compiled one is always of this very text."""
-    from hashlib import sha256
+    """The module name of generated source (integrators.advance_source,
+    kdtree.metric_source): named by its digest, so a compiled one is always of this
+    very text."""
+    try:
+        from _sha256 import sha256  # type: ignore[import-not-found]  # faster to import
+    except ImportError:
+        from hashlib import sha256
     return GENERATED_PREFIX + sha256(source.encode()).hexdigest()[:24]
 
 
@@ -80,12 +87,10 @@ def generated_module(source: str):
     """The compiled module of generated ``source`` when the compiled build is in
     use and holds it (``tools/build_compiled.py`` compiles the texts of
     ``planning_core.systems.family.generated_sources``), else None."""
-    if not state.startswith("compiled"):
+    name = generated_name(source) if generated_names else ""
+    if name not in generated_names:
         return None
-    import importlib.util
-    name = generated_name(source)
-    if importlib.util.find_spec(name) is None:
-        return None
+    import importlib
     return importlib.import_module(name)
 
 
@@ -99,6 +104,8 @@ def why_not_fresh(build_dir: str) -> str | None:
     except OSError:
         return "no compiled modules built (./make.sh builds them where a C compiler is)"
     fields = dict(line.split(" ", 1) for line in lines if " " in line)
+    global _manifest_fields
+    _manifest_fields = fields
     if fields.get("suffix") != extension_suffix():
         return f"the compiled modules were built for another interpreter ({fields.get('suffix')})"
     if {key for key in fields if key.endswith(".py")} != {source_path(m) for m in MODULES}:
@@ -126,5 +133,7 @@ def activate(build_dir: str = BUILD_DIR) -> str:
         folder = os.path.join(build_dir, *package.split("."))
         __import__(package)
         sys.modules[package].__path__.insert(0, folder)
+    global generated_names
+    generated_names = frozenset(_manifest_fields.get("generated", "").split())
     state = f"compiled ({len(MODULES)} modules from {build_dir})"
     return state

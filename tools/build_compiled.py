@@ -53,13 +53,15 @@ def _missing_tool() -> str | None:
     return None
 
 
-def _compile(work: Path) -> None:
-    """Run mypyc and the C compiler with the sources in ROOT, output in ``work``."""
+def _compile(work: Path) -> list[str]:
+    """Run mypyc and the C compiler with the sources in ROOT, output in ``work``;
+    returns the generated modules' names."""
     setup = work / "setup_hot.py"
     setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=GROUP,
                                    target=str(work / "c")))
+    generated = _write_generated(work / "generated")
     paths = ",".join([compiled.source_path(module) for module in compiled.MODULES]
-                     + [str(path) for path in _write_generated(work / "generated")])
+                     + [str(path) for path in generated])
     env = dict(os.environ, CFLAGS=CFLAGS, PYTHONHASHSEED="0")
     env.pop("PYTHONPATH", None)
     done = subprocess.run([sys.executable, str(setup), paths, "build_ext",
@@ -71,6 +73,7 @@ def _compile(work: Path) -> None:
         errors = [line for line in lines if ": error:" in line]  # mypy's notes can be many
         tail = "\n".join((errors or lines)[-30:])
         raise RuntimeError(f"mypyc build failed:\n{tail}")
+    return [path.stem for path in generated]
 
 
 def _write_generated(folder: Path) -> list[Path]:
@@ -86,8 +89,9 @@ def _write_generated(folder: Path) -> list[Path]:
     return paths
 
 
-def _manifest(digests: dict[str, str]) -> str:
-    lines = [f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}"]
+def _manifest(digests: dict[str, str], generated: list[str]) -> str:
+    lines = [f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}",
+             f"generated {' '.join(generated)}"]
     lines += [f"{path} {digest}" for path, digest in digests.items()]
     return "\n".join(lines) + "\n"
 
@@ -100,10 +104,10 @@ def build(target: Path = Path(compiled.BUILD_DIR)) -> Path:
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".tmp-") as temporary:
         work = Path(temporary)
-        _compile(work)
+        generated = _compile(work)
         out = work / "out"
         shutil.copy2(work / "build.log", out / "build.log")
-        (out / compiled.MANIFEST).write_text(_manifest(digests))
+        (out / compiled.MANIFEST).write_text(_manifest(digests, generated))
         old = work / "old"
         if target.exists():
             target.rename(old)
