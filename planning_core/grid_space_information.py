@@ -14,7 +14,6 @@ from typing import Any, Optional, Sequence
 
 from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
-from planning_core.nearest.quadtree import QuadtreeNearest
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
@@ -101,7 +100,8 @@ class PositionNearest:
     """The grid's nearest-node index: a quadtree over states' (x, y)."""
 
     def __init__(self, width: float, height: float):
-        self.index = QuadtreeNearest(width, height)
+        from planning_core.nearest.quadtree import QuadtreeNearest  # planners only: start-up
+        self.index: Any = QuadtreeNearest(width, height)
 
     def add(self, state: Sequence[float]) -> int:
         return self.index.add(state[0], state[1])
