@@ -18,7 +18,7 @@ from typing import Callable, Optional, Sequence
 
 import planning_core.nearest.kdtree  # noqa: F401 (loaded here, not in a planner's clock)
 from planning_core.interrupt import Stop
-from planning_core.kinoplan import motion_reach
+from planning_core.kinoplan import link_tests
 from planning_core.space_information import KinoplanSpaceInformation
 
 State = tuple[float, ...]
@@ -31,10 +31,6 @@ BRIDGE_ATTEMPTS = 100
 """A bridge-test draw falls back to a uniform valid one after this many tries (OMPL's default)."""
 BRIDGE_STEPS = 10
 """The bridge's second end lies a Gaussian of this many check steps from the first, per variable."""
-REACH_WORTH = 3
-"""A clearance that skips fewer samples than this is not worth its cost here..."""
-REACH_PAUSE = 4
-"""...so the next this many samples are tested one by one before another is taken."""
 
 
 @dataclass(frozen=True)
@@ -64,38 +60,24 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
         self.check = system.check
         self.dimension = self.space.dimension
         self.can_end_at = self.is_valid
-        self._reach = motion_reach(system, problem.world)
-        self._angles = tuple(v.angle for v in self.space.variables)
+        self._links = link_tests(system, problem.world)
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[MotionHit]:
         """The first invalid sample of the motion a -> b (``a`` itself not tested),
         at SPEC 5.2's ``n = max(1, ceil(d / check))``; None when every one is valid.
-        The arm skips samples that a valid one's clearance proves valid
-        (``motion_reach``): the same answer as testing each."""
+        The arm's is one native call (``LinkTests.first_invalid``), which skips
+        samples that a valid one's clearance proves valid: the same answer as
+        testing each."""
         n = self.samples_between(a, b)
-        valid, interpolate, reach = self.is_valid, self.interpolate, self._reach
-        if reach is None:
-            for i in range(1, n + 1):
-                if not valid(interpolate(a, b, i / n)):
-                    return MotionHit(i / n)
-            return None
-        step, i, wait = self._step(a, b, n), 1, 0
-        while i <= n:
-            q = interpolate(a, b, i / n)
-            if not valid(q):
+        links = self._links
+        if links is not None:
+            i = links.first_invalid(a, b, n)
+            return MotionHit(i / n) if i else None
+        valid, interpolate = self.is_valid, self.interpolate
+        for i in range(1, n + 1):
+            if not valid(interpolate(a, b, i / n)):
                 return MotionHit(i / n)
-            if wait > 0 or i == n:
-                i, wait = i + 1, wait - 1
-                continue
-            skip = reach(q, step)
-            # Near an obstacle a clearance skips little: test a few samples plainly first.
-            i, wait = i + 1 + skip, (REACH_PAUSE if skip < REACH_WORTH else 0)
         return None
-
-    def _step(self, a: Sequence[float], b: Sequence[float], n: int) -> State:
-        """How far each variable moves from one sample to the next (angles the short way)."""
-        return tuple((math.remainder(y - x, math.tau) if angle else y - x) / n
-                     for x, y, angle in zip(a, b, self._angles))
 
     def samples_between(self, a: Sequence[float], b: Sequence[float]) -> int:
         """``n``: the motion a -> b is checked at ``n + 1`` samples, ends included."""

@@ -12,9 +12,10 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Optional, Union
+from typing import Callable, Optional, Sequence, Union
 
 from planning_core.worlds.body_tests import BodyTest, clearance
+from planning_core.worlds.link_tests import LinkTests
 from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, Obstacles, SegmentTests
 from planning_core.worlds.shapes import (
     BBox,
@@ -152,6 +153,13 @@ class ContinuousWorld:
                     + ([abs(v) for v in self.box.bbox] if self.box else []) + [radius, 1.0])
         margin = radius + CLEARANCE_MARGIN * scale
         return BodyTest(self._bound, body.points, margin).free
+
+    def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
+                   lows: Sequence[float], highs: Sequence[float], margin: float) -> LinkTests:
+        """A two-link arm's tests in this world (:class:`~planning_core.worlds.
+        link_tests.LinkTests`, compiled: the arm's hot path): its links, bounds and
+        reach margin bound to the world's segment tests."""
+        return LinkTests(self._segments, base_x, base_y, l1, l2, lows, highs, margin)
 
 
 def _bind(box: Optional[Rect],

@@ -108,8 +108,8 @@ def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
                      corners: Sequence[Point]) -> float:
     """Distance from a closed segment to a closed rect it does not touch."""
     rx0, ry0, rx1, ry1 = rect
-    best = min(math.hypot(max(rx0 - x0, 0.0, x0 - rx1), max(ry0 - y0, 0.0, y0 - ry1)),
-               math.hypot(max(rx0 - x1, 0.0, x1 - rx1), max(ry0 - y1, 0.0, y1 - ry1)))
+    best = min(math.hypot(max(max(rx0 - x0, 0.0), x0 - rx1), max(max(ry0 - y0, 0.0), y0 - ry1)),
+               math.hypot(max(max(rx0 - x1, 0.0), x1 - rx1), max(max(ry0 - y1, 0.0), y1 - ry1)))
     return corner_gap(x0, y0, x1, y1, corners, best)
 
 
@@ -190,10 +190,10 @@ class SegmentTests:
         lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
         ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
         box = self.box
-        best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
+        best = min(min(min(min(lx - box[0], box[2] - hx), ly - box[1]), box[3] - hy), enough)
         for i in range(len(self.kinds)):
             ox0, oy0, ox1, oy1 = self.boxes[i]
-            if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:  # else cannot be nearer
+            if max(max(max(ox0 - hx, lx - ox1), oy0 - hy), ly - oy1) < best:  # else cannot be nearer
                 best = min(best, self._gap_to(i, x0, y0, x1, y1))
         return best
 
