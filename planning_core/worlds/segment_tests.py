@@ -68,12 +68,30 @@ def near_segment(ax: float, ay: float, bx: float, by: float,
     return cr * cr <= r2 * l2
 
 
-def segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
-    """Euclidean distance from the point (x, y) to the closed segment ab."""
+def segment_offset(ax: float, ay: float, bx: float, by: float, x: float,
+                   y: float) -> tuple[float, float]:
+    """The vector to the point (x, y) from its nearest point on the closed segment ab."""
     ex, ey, wx, wy = bx - ax, by - ay, x - ax, y - ay
     l2 = ex * ex + ey * ey
     t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
-    return math.hypot(wx - t * ex, wy - t * ey)
+    return wx - t * ex, wy - t * ey
+
+
+def segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
+    """Euclidean distance from the point (x, y) to the closed segment ab."""
+    px, py = segment_offset(ax, ay, bx, by, x, y)
+    return math.hypot(px, py)
+
+
+def nearer(best: float, px: float, py: float) -> float:
+    """``min(best, math.hypot(px, py))``, the same float, without the hypot when
+    ``max(|px|, |py|)``, which it never falls below, is not below ``best`` (a
+    NaN compares as the builtins do: it never replaces ``best``)."""
+    if max(abs(px), abs(py)) < best:
+        d = math.hypot(px, py)
+        if d < best:
+            return d
+    return best
 
 
 def segment_meets_rect(x0: float, y0: float, x1: float, y1: float, box: BBox,
@@ -105,22 +123,21 @@ def segment_disc_gap(x0: float, y0: float, x1: float, y1: float,
 
 
 def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
-                     corners: Sequence[Point]) -> float:
+                     corners: tuple[Point, ...]) -> float:
     """Distance from a closed segment to a closed rect it does not touch."""
     rx0, ry0, rx1, ry1 = rect
-    best = min(math.hypot(max(max(rx0 - x0, 0.0), x0 - rx1), max(max(ry0 - y0, 0.0), y0 - ry1)),
-               math.hypot(max(max(rx0 - x1, 0.0), x1 - rx1), max(max(ry0 - y1, 0.0), y1 - ry1)))
+    best = math.hypot(max(max(rx0 - x0, 0.0), x0 - rx1), max(max(ry0 - y0, 0.0), y0 - ry1))
+    best = nearer(best, max(max(rx0 - x1, 0.0), x1 - rx1), max(max(ry0 - y1, 0.0), y1 - ry1))
     return corner_gap(x0, y0, x1, y1, corners, best)
 
 
-def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: Sequence[Point],
+def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: tuple[Point, ...],
                best: float) -> float:
     """``best`` or a corner's distance to the segment, whichever is less (two
     disjoint convex sets are nearest at a vertex of one of them)."""
     for vx, vy in corners:
-        d = segment_distance(x0, y0, x1, y1, vx, vy)
-        if d < best:
-            best = d
+        px, py = segment_offset(x0, y0, x1, y1, vx, vy)
+        best = nearer(best, px, py)
     return best
 
 
