@@ -16,10 +16,11 @@ import random
 from dataclasses import dataclass
 from typing import Callable, Optional, Sequence
 
-import planning_core.nearest.kdtree  # noqa: F401 (loaded here, not in a planner's clock)
 from planning_core.interrupt import Stop
 from planning_core.kinoplan import link_tests
+from planning_core.nearest.kdtree import space_metric
 from planning_core.space_information import KinoplanSpaceInformation
+from planning_core.worlds.link_tests import MotionCheck, sample_count
 
 State = tuple[float, ...]
 
@@ -60,19 +61,18 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
         self.check = system.check
         self.dimension = self.space.dimension
         self.can_end_at = self.is_valid
-        self._links = link_tests(system, problem.world)
+        links = link_tests(system, problem.world)
+        if links is not None:  # the arm: its first_hit in one native call
+            metric = space_metric(self.space)
+            self.first_hit = MotionCheck(links, metric, self.check, MotionHit).first_hit
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[MotionHit]:
         """The first invalid sample of the motion a -> b (``a`` itself not tested),
         at SPEC 5.2's ``n = max(1, ceil(d / check))``; None when every one is valid.
-        The arm's is one native call (``LinkTests.first_invalid``), which skips
+        The arm shadows this with ``link_tests.MotionCheck.first_hit``, which skips
         samples that a valid one's clearance proves valid: the same answer as
         testing each."""
         n = self.samples_between(a, b)
-        links = self._links
-        if links is not None:
-            i = links.first_invalid(a, b, n)
-            return MotionHit(i / n) if i else None
         valid, interpolate = self.is_valid, self.interpolate
         for i in range(1, n + 1):
             if not valid(interpolate(a, b, i / n)):
@@ -81,7 +81,7 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
 
     def samples_between(self, a: Sequence[float], b: Sequence[float]) -> int:
         """``n``: the motion a -> b is checked at ``n + 1`` samples, ends included."""
-        return max(1, math.ceil(self.distance(a, b) / self.check))
+        return sample_count(self.distance(a, b), self.check)
 
     def clearance(self, requested: float) -> float:
         """How far a motion cut short stops before its first invalid sample: one

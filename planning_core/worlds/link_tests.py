@@ -12,8 +12,9 @@ sample. :func:`joints` is the single copy of the arm's forward kinematics
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Any, Sequence
 
+from planning_core.nearest.kdtree import BoxMetric
 from planning_core.worlds.body_tests import SNAP
 from planning_core.worlds.segment_tests import SegmentTests
 
@@ -135,3 +136,27 @@ class LinkTests:
             skip = self.reach_at(ex, ey, tx, ty, move1, move2)
             i, wait = i + 1 + skip, (REACH_PAUSE if skip < REACH_WORTH else 0)
         return 0
+
+
+def sample_count(distance: float, check: float) -> int:
+    """``n``: a motion this long is checked at ``n + 1`` samples, ends included
+    (SPEC 5.2's ``max(1, ceil(d / check))``)."""
+    return max(1, math.ceil(distance / check))
+
+
+class MotionCheck:
+    """The arm's ``first_hit`` in one native call: the motion's sample count by the
+    space's metric (the kd-tree's), then :meth:`LinkTests.first_invalid`."""
+
+    def __init__(self, links: LinkTests, metric: BoxMetric, check: float, hit: Any):
+        self.links = links
+        self.metric = metric
+        self.check = check
+        self.hit = hit
+        """Called with the fraction of the first invalid sample (``MotionHit``)."""
+
+    def first_hit(self, a: tuple[float, ...], b: tuple[float, ...]) -> Any:
+        """``hit(i / n)`` for the first invalid sample ``i`` of a -> b, or None."""
+        n = sample_count(self.metric.distance(a, b), self.check)
+        i = self.links.first_invalid(a, b, n)
+        return self.hit(i / n) if i != 0 else None
