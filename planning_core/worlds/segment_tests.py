@@ -210,7 +210,16 @@ class SegmentTests:
         best = min(min(min(min(lx - box[0], box[2] - hx), ly - box[1]), box[3] - hy), enough)
         for i in range(len(self.kinds)):
             ox0, oy0, ox1, oy1 = self.boxes[i]
-            if max(max(max(ox0 - hx, lx - ox1), oy0 - hy), ly - oy1) < best:  # else cannot be nearer
+            # How far the obstacle's box lies beyond the segment's on some side, the
+            # largest of four as max() takes it: no nearer than that (else skipped).
+            far = ox0 - hx
+            if lx - ox1 > far:
+                far = lx - ox1
+            if oy0 - hy > far:
+                far = oy0 - hy
+            if ly - oy1 > far:
+                far = ly - oy1
+            if far < best:
                 best = min(best, self._gap_to(i, x0, y0, x1, y1))
         return best
 
