@@ -9,7 +9,6 @@ then only the obstacles count, and there are usually none.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Sequence, Union
@@ -26,7 +25,6 @@ from planning_core.worlds.shapes import (
     inside_box,
     pair_test,
     point_in,
-    segment_gap,
 )
 
 Obstacle = Union[Rect, Disc, ConvexPolygon]
@@ -166,10 +164,9 @@ def _bind(box: Optional[Rect],
           obstacles: tuple[Obstacle, ...]) -> tuple[SegmentTests, Obstacles]:
     """The world bound for segment queries and for point and body queries: per
     obstacle its kind, box and data."""
-    kinds, boxes, points, discs, gaps = [], [], [], [], []
+    kinds, boxes, points, discs = [], [], [], []
     for obstacle in obstacles:
         boxes.append(obstacle.bbox)
-        gaps.append(None)
         if isinstance(obstacle, Disc):
             kinds.append(DISC)
             points.append(())
@@ -182,6 +179,5 @@ def _bind(box: Optional[Rect],
         else:
             kinds.append(POLYGON)
             points.append(obstacle.points)
-            gaps[-1] = functools.partial(segment_gap, obstacle)
     bound = Obstacles(box.bbox if box is not None else None, kinds, boxes, points, discs)
-    return SegmentTests(bound, gaps), bound
+    return SegmentTests(bound), bound

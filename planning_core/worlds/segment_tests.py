@@ -10,7 +10,7 @@ that the arm's hot path (a link free? how far from everything?) runs compiled
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Optional, Sequence
+from typing import Optional, Sequence
 
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
@@ -94,6 +94,18 @@ def nearer(best: float, px: float, py: float) -> float:
     return best
 
 
+def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
+    """Distance from the point to the closed CCW polygon (0 inside or on it)."""
+    if not edge_separates(points, ((x, y),)):
+        return 0.0
+    best = math.inf
+    ax, ay = points[-1]
+    for bx, by in points:
+        best = min(best, segment_distance(ax, ay, bx, by, x, y))
+        ax, ay = bx, by
+    return best
+
+
 def segment_meets_rect(x0: float, y0: float, x1: float, y1: float, box: BBox,
                        rect: BBox, corners: Sequence[Point]) -> bool:
     """SAT: bounding boxes (the rect's axes), then the segment's line against the corners."""
@@ -131,6 +143,13 @@ def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
     return corner_gap(x0, y0, x1, y1, corners, best)
 
 
+def segment_polygon_gap(x0: float, y0: float, x1: float, y1: float,
+                        points: tuple[Point, ...]) -> float:
+    """Distance from a closed segment to a closed CCW polygon it does not touch."""
+    best = min(polygon_distance(points, x0, y0), polygon_distance(points, x1, y1))
+    return corner_gap(x0, y0, x1, y1, points, best)
+
+
 def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: tuple[Point, ...],
                best: float) -> float:
     """``best`` or a corner's distance to the segment, whichever is less (two
@@ -163,13 +182,10 @@ class SegmentTests:
     """Segment queries against a world's :class:`Obstacles` (its fields read
     straight off, for native access in the loops)."""
 
-    def __init__(self, world: Obstacles,
-                 polygon_gap: list[Optional[Callable[[float, float, float, float], float]]]):
+    def __init__(self, world: Obstacles):
         self.has_box, self.box = world.has_box, world.box
         self.kinds, self.boxes = world.kinds, world.boxes
         self.points, self.discs = world.points, world.discs
-        self.polygon_gap = polygon_gap
-        """Per obstacle: a polygon's gap function (the shapes' own); None for the others."""
 
     def free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """The closed segment is in the closed box and touches no closed obstacle (a
@@ -230,5 +246,4 @@ class SegmentTests:
             return segment_disc_gap(x0, y0, x1, y1, cx, cy, r)
         if kind == RECT:
             return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.points[i])
-        polygon_gap: Any = self.polygon_gap[i]
-        return float(polygon_gap(x0, y0, x1, y1))
+        return segment_polygon_gap(x0, y0, x1, y1, self.points[i])
