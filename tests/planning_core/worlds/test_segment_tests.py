@@ -56,8 +56,8 @@ def reference_shape_gap(shape, x0, y0, x1, y1):
 
 
 def check_segments(seed: int, count: int = 5000) -> None:
-    """``free`` and ``gap`` against the shapes, and the rect and polygon gaps
-    against their old form, bit for bit (also run with the compiled build: tests/test_compiled.py)."""
+    """``free`` and ``gap`` against the shapes, and the rect and polygon gaps against
+    their old form, bit for bit (also run with the compiled build: tests/test_compiled.py)."""
     rng = random.Random(seed)
     shapes = [o for o in OBSTACLES if not isinstance(o, Disc)]
     for box in (Rect(-2.2, -2.2, 2.2, 2.2), None):
