@@ -8,6 +8,7 @@ with its weight; angle differences wrapped) is at most the tolerance.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Optional
@@ -16,6 +17,7 @@ from planning_core.goal import PLANNER_MARGIN
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, OUTSIDE_BOX, ContinuousWorld
+from planning_core.worlds.link_tests import LinkTests
 
 State = tuple[float, ...]
 
@@ -140,7 +142,7 @@ def state_validator(system: FamilySystem,
     if world is None or not system.occupies:
         return in_bounds
     if system.occupies == "links":
-        return _links_validator(system, world, in_bounds)
+        return link_tests(system, world).valid
     free = body_test(system, world)
 
     def valid(state: Sequence[float]) -> bool:
@@ -158,27 +160,12 @@ def body_test(system: FamilySystem, world: Optional[ContinuousWorld]):
     return world.body_test(system.body)
 
 
-def _links_validator(system, world: ContinuousWorld, in_bounds):
-    joints, segment_free = system.joints, world.segment_free
+def link_tests(system: FamilySystem, world: Optional[ContinuousWorld]) -> Optional[LinkTests]:
+    """The arm's links bound to ``world`` (``world.link_tests``: its validity test,
+    motion reach and motion check), else None.
 
-    def valid(state: Sequence[float]) -> bool:
-        if not in_bounds(state):
-            return False
-        (bx, by), (ex, ey), (tx, ty) = joints(state)
-        return segment_free(bx, by, ex, ey) and segment_free(ex, ey, tx, ty)
-    return valid
-
-
-def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
-    """``reach(state, step)`` for the arm in a world, else None: given a valid
-    ``state``, how many of the next samples of a straight motion, each ``step``
-    (per angle, unwrapped) further on, are surely valid too.
-
-    From each link's workspace clearance (``world.segment_clearance``, less a
-    margin far above rounding) and a bound on how far its points move per step:
-    those samples pass the exact test (the validator's) too. A body has none:
-    ``world.body_test``'s free disc does that job.
-    """
+    The reach's margin, far above rounding, scales with the world's and the
+    arm's extent."""
     if world is None or system.occupies != "links":
         return None
     values = [abs(v) for o in world.obstacles for v in o.bbox]
@@ -186,22 +173,25 @@ def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
     values += [abs(system.base_x) + system.l1 + system.l2,
                abs(system.base_y) + system.l1 + system.l2, 1.0]
     margin = CLEARANCE_MARGIN * max(values)
-    joints, l1, l2 = system.joints, system.l1, system.l2
-    clearance = world.segment_clearance
+    variables = system.space.variables
+    lows = [-math.inf if v.angle else v.low for v in variables]
+    highs = [math.inf if v.angle else v.high for v in variables]
+    return world.link_tests(system.base_x, system.base_y, system.l1, system.l2,
+                            lows, highs, margin)
 
-    def reach(state: Sequence[float], step: Sequence[float]) -> int:
-        # Link 1 moves at most l1 |d theta1| per step, link 2 at most that plus
-        # l2 |d theta1 + d theta2| (a chord is no longer than its arc).
-        (bx, by), (ex, ey), (tx, ty) = joints(state)
-        move1 = l1 * abs(step[0])
-        move2 = move1 + l2 * abs(step[0] + step[1])
-        most = 1e9
-        if move2 > 0.0:  # link 2 first: it moves more, and caps link 1's search
-            most = (clearance(ex, ey, tx, ty, margin + most * move2) - margin) / move2
-        if move1 > 0.0:
-            most = min(most, (clearance(bx, by, ex, ey, margin + most * move1) - margin) / move1)
-        return int(max(0.0, min(most, 1e9)))
-    return reach
+
+def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
+    """``reach(state, step)`` for the arm in a world, else None: given a valid
+    ``state``, how many of the next samples of a straight motion, each ``step``
+    (per angle, unwrapped) further on, are surely valid too (``LinkTests.reach``).
+
+    From each link's workspace clearance (``world.segment_clearance``, less a
+    margin far above rounding) and a bound on how far its points move per step:
+    those samples pass the exact test (the validator's) too. A body has none:
+    ``world.body_test``'s free disc does that job.
+    """
+    tests = link_tests(system, world)
+    return None if tests is None else tests.reach
 
 
 def state_valid(system: FamilySystem, world: Optional[ContinuousWorld],

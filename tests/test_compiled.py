@@ -211,3 +211,19 @@ def test_the_compiled_body_test_answers_as_the_shapes_do():
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           cwd=ROOT, env=_env(), timeout=120)
     assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
+
+
+def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
+    """tests/planning_core/worlds/test_link_tests.py's seeded states and motions and
+    test_segment_tests.py's segments, with the compiled build (the unit run imports
+    the interpreted source)."""
+    fresh_or_skip()
+    probe = ("from planning_core.compiled import activate\nactivate()\n"
+             "from tests.planning_core.worlds.test_link_tests import check_against_reference,"
+             " check_remainder\n"
+             "from tests.planning_core.worlds.test_segment_tests import check_segments\n"
+             "check_against_reference(seed=7)\ncheck_segments(seed=8)\ncheck_remainder(seed=9)\n"
+             "import planning_core.worlds.link_tests as t\nprint(t.__file__)\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, env=_env(), timeout=120)
+    assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr

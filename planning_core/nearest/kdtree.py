@@ -61,7 +61,7 @@ class KDTree:
         self._points: list[State] = []
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
         # A native object in the compiled build, so that its methods are direct calls.
-        self._metric: BoxMetric = _compiled_metric(space) if COMPILED else _generated_metric(space)
+        self._metric: BoxMetric = space_metric(space)
         weight = {i: w for indices, w in space.groups for i in indices}
         # Only axes the metric weighs are worth splitting on.
         self._axes = tuple(i for i in sorted(weight) if weight[i] > 0.0)
@@ -286,6 +286,13 @@ def _children(node: _Node, key: State) -> tuple[_Node, _Node]:
     left, right = node.left, node.right
     assert left is not None and right is not None
     return (left, right) if key[node.axis] < node.split else (right, left)
+
+
+def space_metric(space: StateSpace) -> BoxMetric:
+    """The space's metric as the tree measures with it: compiled, the build's
+    ``Metric`` of the space (else :class:`BoxMetric`), a native object whose methods
+    are direct calls; interpreted, the space's generated functions."""
+    return _compiled_metric(space) if COMPILED else _generated_metric(space)
 
 
 def _generated_metric(space: StateSpace) -> BoxMetric:

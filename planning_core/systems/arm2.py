@@ -4,28 +4,24 @@ angles, so its configuration space is a torus.
 ``elbow = base + l1 (cos t1, sin t1)``, ``tip = elbow + l2 (cos(t1 + t2),
 sin(t1 + t2))``; the links are the closed segments base -> elbow and elbow ->
 tip, and a configuration is valid when both lie inside the world box and off
-every obstacle (``planning_core.kinoplan.state_validator``). A cosine or sine below ``shapes.SNAP`` counts as 0, as for a
-placed body, so quarter turns are exact. ``position_indices`` are (theta1,
-theta2): the plane of the configuration-space square.
+every obstacle (``planning_core.kinoplan.state_validator``). A cosine or sine
+below ``shapes.SNAP`` counts as 0, as for a placed body, so quarter turns are
+exact (``planning_core.worlds.link_tests.joints``). ``position_indices`` are
+(theta1, theta2): the plane of the configuration-space square.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import ClassVar
 
 from planning_core.systems.family import Defaults, GeometricFamily
-from planning_core.worlds.shapes import SNAP, Segment
+from planning_core.worlds import link_tests
+from planning_core.worlds.shapes import Segment
 
 Point = tuple[float, float]
 DEFAULTS = Defaults(bounds={}, metric=(("theta1,theta2", 1.0),), check=0.01)
-
-
-def _cos_sin(angle: float) -> Point:
-    c, s = math.cos(angle), math.sin(angle)
-    return (0.0 if abs(c) < SNAP else c), (0.0 if abs(s) < SNAP else s)
 
 
 @dataclass(frozen=True)
@@ -48,11 +44,10 @@ class Arm2(GeometricFamily):
     DEFAULTS: ClassVar[Defaults] = DEFAULTS
 
     def joints(self, state: Sequence[float]) -> tuple[Point, Point, Point]:
-        """Base, elbow and tip positions."""
-        c1, s1 = _cos_sin(state[0])
-        c12, s12 = _cos_sin(state[0] + state[1])
-        ex, ey = self.base_x + self.l1 * c1, self.base_y + self.l1 * s1
-        return (self.base_x, self.base_y), (ex, ey), (ex + self.l2 * c12, ey + self.l2 * s12)
+        """Base, elbow and tip positions (``link_tests.joints``)."""
+        ex, ey, tx, ty = link_tests.joints(self.base_x, self.base_y, self.l1, self.l2,
+                                           state[0], state[1])
+        return (self.base_x, self.base_y), (ex, ey), (tx, ty)
 
     def links(self, state: Sequence[float]) -> tuple[Segment, Segment]:
         """The two links as closed segments: base -> elbow, elbow -> tip."""

@@ -1,8 +1,9 @@
 """A placed body (a car's footprint) against a world's obstacles, on plain floats.
 
 Placing a body's points, the polygon-against-disc test and a point's distance to
-a rect, disc or polygon live here as plain-float functions that
-:mod:`planning_core.worlds.shapes` imports (one copy), with :class:`BodyTest`,
+a rect or disc (a polygon's: ``segment_tests.polygon_distance``) live here as
+plain-float functions that :mod:`planning_core.worlds.shapes` imports (one copy),
+with :class:`BodyTest`,
 the per-slice collision test of every family car, so that it runs compiled
 (mypyc, ``planning_core.compiled``), and :func:`clearance`, a point's distance to
 a world's :class:`~planning_core.worlds.segment_tests.Obstacles`.
@@ -19,7 +20,7 @@ from planning_core.worlds.segment_tests import (
     Obstacles,
     edge_separates,
     near_segment,
-    segment_distance,
+    polygon_distance,
 )
 
 Point = tuple[float, float]
@@ -77,18 +78,6 @@ def rect_distance(rect: BBox, x: float, y: float) -> float:
     """Distance from the point to the closed rect (0 inside or on it)."""
     x0, y0, x1, y1 = rect
     return math.hypot(max(max(x0 - x, 0.0), x - x1), max(max(y0 - y, 0.0), y - y1))
-
-
-def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
-    """Distance from the point to the closed CCW polygon (0 inside or on it)."""
-    if not edge_separates(points, ((x, y),)):
-        return 0.0
-    best = math.inf
-    ax, ay = points[-1]
-    for bx, by in points:
-        best = min(best, segment_distance(ax, ay, bx, by, x, y))
-        ax, ay = bx, by
-    return best
 
 
 def _extent(values: list[float]) -> tuple[float, float]:

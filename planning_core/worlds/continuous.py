@@ -9,12 +9,12 @@ then only the obstacles count, and there are usually none.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Optional, Union
+from typing import Callable, Optional, Sequence, Union
 
 from planning_core.worlds.body_tests import BodyTest, clearance
+from planning_core.worlds.link_tests import LinkTests
 from planning_core.worlds.segment_tests import DISC, POLYGON, RECT, Obstacles, SegmentTests
 from planning_core.worlds.shapes import (
     BBox,
@@ -25,7 +25,6 @@ from planning_core.worlds.shapes import (
     inside_box,
     pair_test,
     point_in,
-    segment_gap,
 )
 
 Obstacle = Union[Rect, Disc, ConvexPolygon]
@@ -153,15 +152,21 @@ class ContinuousWorld:
         margin = radius + CLEARANCE_MARGIN * scale
         return BodyTest(self._bound, body.points, margin).free
 
+    def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
+                   lows: Sequence[float], highs: Sequence[float], margin: float) -> LinkTests:
+        """A two-link arm's tests in this world (:class:`~planning_core.worlds.
+        link_tests.LinkTests`, compiled: the arm's hot path): its links, bounds and
+        reach margin bound to the world's segment tests."""
+        return LinkTests(self._segments, base_x, base_y, l1, l2, lows, highs, margin)
+
 
 def _bind(box: Optional[Rect],
           obstacles: tuple[Obstacle, ...]) -> tuple[SegmentTests, Obstacles]:
     """The world bound for segment queries and for point and body queries: per
     obstacle its kind, box and data."""
-    kinds, boxes, points, discs, gaps = [], [], [], [], []
+    kinds, boxes, points, discs = [], [], [], []
     for obstacle in obstacles:
         boxes.append(obstacle.bbox)
-        gaps.append(None)
         if isinstance(obstacle, Disc):
             kinds.append(DISC)
             points.append(())
@@ -174,6 +179,5 @@ def _bind(box: Optional[Rect],
         else:
             kinds.append(POLYGON)
             points.append(obstacle.points)
-            gaps[-1] = functools.partial(segment_gap, obstacle)
     bound = Obstacles(box.bbox if box is not None else None, kinds, boxes, points, discs)
-    return SegmentTests(bound, gaps), bound
+    return SegmentTests(bound), bound

@@ -10,7 +10,7 @@ that the arm's hot path (a link free? how far from everything?) runs compiled
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Optional, Sequence
+from typing import Optional, Sequence
 
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
@@ -68,12 +68,42 @@ def near_segment(ax: float, ay: float, bx: float, by: float,
     return cr * cr <= r2 * l2
 
 
-def segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
-    """Euclidean distance from the point (x, y) to the closed segment ab."""
+def segment_offset(ax: float, ay: float, bx: float, by: float, x: float,
+                   y: float) -> tuple[float, float]:
+    """The vector to the point (x, y) from its nearest point on the closed segment ab."""
     ex, ey, wx, wy = bx - ax, by - ay, x - ax, y - ay
     l2 = ex * ex + ey * ey
     t = 0.0 if l2 == 0.0 else min(1.0, max(0.0, (ex * wx + ey * wy) / l2))
-    return math.hypot(wx - t * ex, wy - t * ey)
+    return wx - t * ex, wy - t * ey
+
+
+def segment_distance(ax: float, ay: float, bx: float, by: float, x: float, y: float) -> float:
+    """Euclidean distance from the point (x, y) to the closed segment ab."""
+    px, py = segment_offset(ax, ay, bx, by, x, y)
+    return math.hypot(px, py)
+
+
+def nearer(best: float, px: float, py: float) -> float:
+    """``min(best, math.hypot(px, py))``, the same float, without the hypot when
+    ``max(|px|, |py|)``, which it never falls below, is not below ``best`` (a
+    NaN compares as the builtins do: it never replaces ``best``)."""
+    if max(abs(px), abs(py)) < best:
+        d = math.hypot(px, py)
+        if d < best:
+            return d
+    return best
+
+
+def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
+    """Distance from the point to the closed CCW polygon (0 inside or on it)."""
+    if not edge_separates(points, ((x, y),)):
+        return 0.0
+    best = math.inf
+    ax, ay = points[-1]
+    for bx, by in points:
+        best = min(best, segment_distance(ax, ay, bx, by, x, y))
+        ax, ay = bx, by
+    return best
 
 
 def segment_meets_rect(x0: float, y0: float, x1: float, y1: float, box: BBox,
@@ -105,22 +135,28 @@ def segment_disc_gap(x0: float, y0: float, x1: float, y1: float,
 
 
 def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
-                     corners: Sequence[Point]) -> float:
+                     corners: tuple[Point, ...]) -> float:
     """Distance from a closed segment to a closed rect it does not touch."""
     rx0, ry0, rx1, ry1 = rect
-    best = min(math.hypot(max(rx0 - x0, 0.0, x0 - rx1), max(ry0 - y0, 0.0, y0 - ry1)),
-               math.hypot(max(rx0 - x1, 0.0, x1 - rx1), max(ry0 - y1, 0.0, y1 - ry1)))
+    best = math.hypot(max(max(rx0 - x0, 0.0), x0 - rx1), max(max(ry0 - y0, 0.0), y0 - ry1))
+    best = nearer(best, max(max(rx0 - x1, 0.0), x1 - rx1), max(max(ry0 - y1, 0.0), y1 - ry1))
     return corner_gap(x0, y0, x1, y1, corners, best)
 
 
-def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: Sequence[Point],
+def segment_polygon_gap(x0: float, y0: float, x1: float, y1: float,
+                        points: tuple[Point, ...]) -> float:
+    """Distance from a closed segment to a closed CCW polygon it does not touch."""
+    best = min(polygon_distance(points, x0, y0), polygon_distance(points, x1, y1))
+    return corner_gap(x0, y0, x1, y1, points, best)
+
+
+def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: tuple[Point, ...],
                best: float) -> float:
     """``best`` or a corner's distance to the segment, whichever is less (two
     disjoint convex sets are nearest at a vertex of one of them)."""
     for vx, vy in corners:
-        d = segment_distance(x0, y0, x1, y1, vx, vy)
-        if d < best:
-            best = d
+        px, py = segment_offset(x0, y0, x1, y1, vx, vy)
+        best = nearer(best, px, py)
     return best
 
 
@@ -146,13 +182,10 @@ class SegmentTests:
     """Segment queries against a world's :class:`Obstacles` (its fields read
     straight off, for native access in the loops)."""
 
-    def __init__(self, world: Obstacles,
-                 polygon_gap: list[Optional[Callable[[float, float, float, float], float]]]):
+    def __init__(self, world: Obstacles):
         self.has_box, self.box = world.has_box, world.box
         self.kinds, self.boxes = world.kinds, world.boxes
         self.points, self.discs = world.points, world.discs
-        self.polygon_gap = polygon_gap
-        """Per obstacle: a polygon's gap function (the shapes' own); None for the others."""
 
     def free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """The closed segment is in the closed box and touches no closed obstacle (a
@@ -190,10 +223,19 @@ class SegmentTests:
         lx, hx = (x0, x1) if x0 <= x1 else (x1, x0)
         ly, hy = (y0, y1) if y0 <= y1 else (y1, y0)
         box = self.box
-        best = min(lx - box[0], box[2] - hx, ly - box[1], box[3] - hy, enough)
+        best = min(min(min(min(lx - box[0], box[2] - hx), ly - box[1]), box[3] - hy), enough)
         for i in range(len(self.kinds)):
             ox0, oy0, ox1, oy1 = self.boxes[i]
-            if max(ox0 - hx, lx - ox1, oy0 - hy, ly - oy1) < best:  # else cannot be nearer
+            # How far the obstacle's box lies beyond the segment's on some side, the
+            # largest of four as max() takes it: no nearer than that (else skipped).
+            far = ox0 - hx
+            if lx - ox1 > far:
+                far = lx - ox1
+            if oy0 - hy > far:
+                far = oy0 - hy
+            if ly - oy1 > far:
+                far = ly - oy1
+            if far < best:
                 best = min(best, self._gap_to(i, x0, y0, x1, y1))
         return best
 
@@ -204,5 +246,4 @@ class SegmentTests:
             return segment_disc_gap(x0, y0, x1, y1, cx, cy, r)
         if kind == RECT:
             return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.points[i])
-        polygon_gap: Any = self.polygon_gap[i]
-        return float(polygon_gap(x0, y0, x1, y1))
+        return segment_polygon_gap(x0, y0, x1, y1, self.points[i])

@@ -26,12 +26,12 @@ import math
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence, Union
 
-from planning_core.worlds.body_tests import (SNAP, disc_distance, placed_coordinates,
-                                             polygon_distance, rect_distance)
+from planning_core.worlds.body_tests import SNAP, disc_distance, placed_coordinates, rect_distance
 from planning_core.worlds.body_tests import poly_disc as _poly_disc
-from planning_core.worlds.segment_tests import (boxes_overlap, corner_gap, segment_disc_gap,
+from planning_core.worlds.segment_tests import (boxes_overlap, polygon_distance, segment_disc_gap,
                                                 segment_meets_disc, segment_meets_polygon,
-                                                segment_meets_rect, segment_rect_gap)
+                                                segment_meets_rect, segment_polygon_gap,
+                                                segment_rect_gap)
 from planning_core.worlds.segment_tests import edge_separates as _edge_separates
 from planning_core.worlds.segment_tests import segment_distance as _segment_distance
 from planning_core.worlds.segment_tests import strictly_one_side as _strictly_one_side
@@ -375,5 +375,4 @@ def segment_gap(shape: Union[Rect, Disc, ConvexPolygon],
         return segment_disc_gap(x0, y0, x1, y1, shape.cx, shape.cy, shape.r)
     if isinstance(shape, Rect):
         return segment_rect_gap(x0, y0, x1, y1, shape.bbox, shape.corners)
-    best = min(point_distance(shape, x0, y0), point_distance(shape, x1, y1))
-    return corner_gap(x0, y0, x1, y1, shape.points, best)
+    return segment_polygon_gap(x0, y0, x1, y1, shape.points)

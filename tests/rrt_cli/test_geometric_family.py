@@ -13,7 +13,9 @@ from rrt_cli.planners import PLANNERS, prmstar
 from rrt_cli.planners.base import StopCondition
 from rrt_cli.planners.point_common import path_length
 from rrt_cli.planners.steering import StraightLineSteering
+from planning_core.worlds.link_tests import LinkTests
 from tests.conftest import ROOT, plan_in_process, run_planner
+from tests.planning_core.worlds.test_link_tests import count_calls
 from validator.checks import validate_plan
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
@@ -81,11 +83,13 @@ def test_planner_solves_a_small_geometric_problem_and_the_validator_accepts(plan
 
 
 @pytest.mark.parametrize("problem", sorted(SMALL))
-def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem):
+def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem, monkeypatch):
     si = geometric_si(SMALL[problem])
     rng = random.Random(5)
     blocked = tested = samples_total = 0
     valid = si.is_valid
+    # The arm's samples are counted in its native loop (LinkTests, interpreted here).
+    tests = count_calls(monkeypatch, LinkTests, "in_bounds")
 
     def counted(state):
         nonlocal tested
@@ -95,9 +99,9 @@ def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem)
         a, b = si.free_sampler(rng)(), si.sample_target(rng)
         samples = si.system.motion_samples(a, b)
         first_bad = next((k for k in range(1, len(samples)) if not valid(samples[k])), None)
-        si.is_valid = counted
+        si.is_valid, before = counted, tests[0]
         hit = si.first_hit(a, b)
-        si.is_valid = valid
+        si.is_valid, tested = valid, tested + tests[0] - before
         samples_total += len(samples) - 1
         if first_bad is None:
             assert hit is None
