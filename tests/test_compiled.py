@@ -37,6 +37,12 @@ def _env() -> dict:
     return env
 
 
+def run_probe(probe: str, timeout: float = 60, stdin=None) -> subprocess.CompletedProcess:
+    """Python source ``probe`` run in a fresh interpreter at the project's root (text out)."""
+    return subprocess.run([sys.executable, "-c", probe], stdin=stdin, capture_output=True,
+                          text=True, cwd=ROOT, env=_env(), timeout=timeout)
+
+
 def run_planner_compiled(args: list[str], stdin: str,
                          timeout: float = 120) -> subprocess.CompletedProcess:
     """tests.conftest.run_planner with the compiled modules (skips when none are fresh)."""
@@ -102,8 +108,7 @@ def test_a_fresh_build_is_what_runs():
     fresh_or_skip()
     probe = ("from planning_core.compiled import activate, MODULES\nimport importlib\n"
              "activate()\nprint(*(importlib.import_module(m).__file__ for m in MODULES))")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                          cwd=ROOT, env=_env(), timeout=60)
+    done = run_probe(probe)
     files = done.stdout.split()
     assert len(files) == len(compiled.MODULES), done.stderr
     assert all(file.startswith(compiled.BUILD_DIR) and file.endswith(compiled.extension_suffix())
@@ -130,8 +135,7 @@ def test_the_family_runs_its_generated_code_compiled():
              "pairs = [(si.sample_target(rng), si.sample_target(rng)) for _ in range(3000)]\n"
              "assert all(metric.distance(a, b).hex() == si.space.distance(a, b).hex()"
              " for a, b in pairs)\n")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                          cwd=ROOT, env=_env(), timeout=60)
+    done = run_probe(probe)
     files = done.stdout.split()
     assert len(files) > 1, done.stderr
     assert all(file.startswith(compiled.BUILD_DIR) and file.endswith(compiled.extension_suffix())
@@ -146,8 +150,7 @@ def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
              "except SystemExit:\n    pass\n"
              "from planning_core import compiled\nsys.stderr.write(compiled.state)\n")
     with open(SIMPLE0, "rb") as problem:
-        done = subprocess.run([sys.executable, "-c", probe], stdin=problem, capture_output=True,
-                              text=True, cwd=ROOT, env=_env(), timeout=60)
+        done = run_probe(probe, stdin=problem)
     assert done.stdout.strip() and done.stderr.startswith("compiled ("), done.stderr
 
 
@@ -161,8 +164,7 @@ def test_a_world_with_compiled_tests_pickles():
              "q = pickle.loads(pickle.dumps(p))\n"
              "assert q == p and q.world.segment_free(0, 0, 0.5, 0.5)\n"
              "import planning_core.worlds.segment_tests as t\nprint(t.__file__)\n")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                          cwd=ROOT, env=_env(), timeout=60)
+    done = run_probe(probe)
     assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
 
 
@@ -208,8 +210,7 @@ def test_the_compiled_body_test_answers_as_the_shapes_do():
              "from tests.planning_core.worlds.test_body_tests import check_random_walks\n"
              "check_random_walks(seed=7)\n"
              "import planning_core.worlds.body_tests as t\nprint(t.__file__)\n")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                          cwd=ROOT, env=_env(), timeout=120)
+    done = run_probe(probe, timeout=120)
     assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
 
 
@@ -224,6 +225,5 @@ def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
              "from tests.planning_core.worlds.test_segment_tests import check_segments\n"
              "check_against_reference(seed=7)\ncheck_segments(seed=8)\ncheck_remainder(seed=9)\n"
              "import planning_core.worlds.link_tests as t\nprint(t.__file__)\n")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                          cwd=ROOT, env=_env(), timeout=120)
+    done = run_probe(probe, timeout=120)
     assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
