@@ -47,7 +47,9 @@ def strictly_one_side(ax: float, ay: float, bx: float, by: float,
     side = 0.0
     for qx, qy in pts:
         cr = ex * (qy - ay) - ey * (qx - ax)
-        if cr == 0.0 or cr * side < 0.0:
+        # Opposite signs, compared directly: their product underflows to 0 below
+        # about 1e-154 each (a segment 1e-199 long read as beside a polygon it is in).
+        if cr == 0.0 or cr < 0.0 < side or side < 0.0 < cr:
             return False
         side = cr
     return True

@@ -673,3 +673,12 @@ def test_shuffled_vertices_are_rejected_unless_still_in_cyclic_order(a, rnd):
     else:
         with pytest.raises(ValueError, match="not convex"):
             ConvexPolygon(shuffled)
+
+
+def test_a_tiny_segment_inside_a_polygon_meets_it():
+    """The side test compares signs, not their product (which underflows to 0 for
+    cross products below about 1e-154: hypothesis found this case)."""
+    triangle = ConvexPolygon(((-1.0, 2.0), (0.0, 0.0), (1.0, 0.0)))
+    for length in (2.7513208764734017e-199, 1e-300, 5e-324, 1e-3):
+        assert segment_polygon_intersect(Segment(length, 0.5, 0.0, 0.5), triangle)
+    assert not segment_polygon_intersect(Segment(2.0, 0.5, 2.0 + 1e-300, 0.5), triangle)
