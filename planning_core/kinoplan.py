@@ -180,20 +180,6 @@ def link_tests(system: FamilySystem, world: Optional[ContinuousWorld]) -> Option
                             lows, highs, margin)
 
 
-def motion_reach(system: FamilySystem, world: Optional[ContinuousWorld]):
-    """``reach(state, step)`` for the arm in a world, else None: given a valid
-    ``state``, how many of the next samples of a straight motion, each ``step``
-    (per angle, unwrapped) further on, are surely valid too (``LinkTests.reach``).
-
-    From each link's workspace clearance (``world.segment_clearance``, less a
-    margin far above rounding) and a bound on how far its points move per step:
-    those samples pass the exact test (the validator's) too. A body has none:
-    ``world.body_test``'s free disc does that job.
-    """
-    tests = link_tests(system, world)
-    return None if tests is None else tests.reach
-
-
 def state_valid(system: FamilySystem, world: Optional[ContinuousWorld],
                 state: Sequence[float]) -> bool:
     """One state's validity; in loops, bind :func:`state_validator` once."""

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from planning_core.kinoplan import link_tests, motion_reach, state_validator
+from planning_core.kinoplan import link_tests, state_validator
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.space_information import kinoplan_space_information
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, ContinuousWorld
@@ -149,7 +149,7 @@ def check_against_reference(seed: int, count: int = 2000, tests: list[int] | Non
         arm, world = problem.system, problem.world
         si = kinoplan_space_information(problem)
         valid, old_valid = state_validator(arm, world), reference_valid(arm, world)
-        reach, old_reach = motion_reach(arm, world), reference_reach(arm, world)
+        reach, old_reach = link_tests(arm, world).reach, reference_reach(arm, world)
         states = random_states(rng, si, count)
         answers = set()
         for state in states + [list(s) for s in states[:50]]:
@@ -234,7 +234,7 @@ def test_odd_states():
         valid = state_validator(problem.system, problem.world)
         assert not valid(()) and not valid((0.5,)) and not valid((0.5, 0.5, 0.5))
         assert valid((0, 0)) == valid((0.0, 0.0))
-        reach = motion_reach(problem.system, problem.world)
+        reach = link_tests(problem.system, problem.world).reach
         with pytest.raises(ValueError):
             reach((math.inf, 0.0), (0.01, 0.01))
         assert reach((0.0, 0.0), (math.nan, 0.0)) == 10 ** 9
