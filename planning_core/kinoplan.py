@@ -168,11 +168,8 @@ def link_tests(system: FamilySystem, world: Optional[ContinuousWorld]) -> Option
     arm's extent."""
     if world is None or system.occupies != "links":
         return None
-    values = [abs(v) for o in world.obstacles for v in o.bbox]
-    values += [abs(v) for v in world.box.bbox] if world.box is not None else []
-    values += [abs(system.base_x) + system.l1 + system.l2,
-               abs(system.base_y) + system.l1 + system.l2, 1.0]
-    margin = CLEARANCE_MARGIN * max(values)
+    margin = CLEARANCE_MARGIN * max(world.scale(), abs(system.base_x) + system.l1 + system.l2,
+                                    abs(system.base_y) + system.l1 + system.l2)
     variables = system.space.variables
     lows = [-math.inf if v.angle else v.low for v in variables]
     highs = [math.inf if v.angle else v.high for v in variables]

@@ -134,6 +134,13 @@ class ContinuousWorld:
         in an obstacle or outside the box)."""
         return clearance(self._bound, x, y)
 
+    def scale(self) -> float:
+        """The largest coordinate, in size, of the obstacles' and the box's bounding
+        boxes, and at least 1: what a clearance margin far above rounding scales with."""
+        values = [abs(v) for o in self.obstacles for v in o.bbox]
+        values += [abs(v) for v in self.box.bbox] if self.box is not None else []
+        return max(values + [1.0])
+
     def body_test(self, body: ConvexPolygon) -> Callable[[float, float, float], bool]:
         """``free(x, y, theta)``: the same answer as
         ``polygon_free(place(body, x, y, theta))``, the same float operations,
@@ -147,9 +154,7 @@ class ContinuousWorld:
         clearance grows at most as fast as (x, y) moves, so it is not recomputed
         while the last one plus the distance moved since leaves no room."""
         radius = max(math.hypot(px, py) for px, py in body.points)
-        scale = max([abs(v) for o in self.obstacles for v in o.bbox]
-                    + ([abs(v) for v in self.box.bbox] if self.box else []) + [radius, 1.0])
-        margin = radius + CLEARANCE_MARGIN * scale
+        margin = radius + CLEARANCE_MARGIN * max(self.scale(), radius)
         return BodyTest(self._bound, body.points, margin).free
 
     def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
