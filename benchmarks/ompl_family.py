@@ -37,9 +37,12 @@ import math
 import random
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from benchmarks.ompl_adapters import OmplResult, inside, make_bounds, ompl_seed, solve_with
-from planning_core.kinoplan import KinoplanProblem, state_validator
+
+if TYPE_CHECKING:  # imported where used: a grid problem's peer run should not load the family
+    from planning_core.kinoplan import KinoplanProblem
 
 KINODYNAMIC_PLANNERS = ("rrt", "kpiece1")
 GEOMETRIC_PLANNERS = ("rrt", "rrtconnect", "prm")
@@ -168,6 +171,7 @@ def _projection(ob, layout: Layout, indices, cells: int):
 def control_space_information(ob, oc, problem: KinoplanProblem, layout: Layout):
     """OMPL's control SpaceInformation for a kinodynamic problem (not yet set up):
     our validity test, our slice as the propagator, DT steps, KMIN..KMAX of them."""
+    from planning_core.kinoplan import state_validator
     system = problem.system
     controls = oc.RealVectorControlSpace(layout.space, len(system.controls))
     controls.setBounds(make_bounds(ob, [lo for lo, _ in system.controls],
@@ -245,6 +249,7 @@ def _control_tree(data, get, held, dt) -> tuple[tuple[float, ...], ...]:
 
 
 def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began):
+    from planning_core.kinoplan import state_validator
     system = problem.system
     info = ob.SpaceInformation(layout.space)
     valid, get = state_validator(system, problem.world), layout.get
