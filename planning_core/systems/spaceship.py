@@ -12,12 +12,13 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, Final
 
-SLICES = 20
-DT = 1.0 / SLICES
-MAX_THRUST = 0.5
-FULL_TURN = 2.0 * math.pi
+# Final: compiled code reads these as constants, not from the module's dict per slice.
+SLICES: Final = 20
+DT: Final = 1.0 / SLICES
+MAX_THRUST: Final = 0.5
+FULL_TURN: Final = 2.0 * math.pi
 
 State = tuple[float, float, float, float]
 Control = tuple[float, float]
