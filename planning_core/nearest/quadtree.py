@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import heapq
 import math
+from typing import Final
 
 
 class _Node:
@@ -173,7 +174,7 @@ class _KNearest(_Scan):
 
 
 # Below this box width a leaf stops splitting (only exact duplicates get there).
-_MIN_NODE_SIZE = 1e-9
+_MIN_NODE_SIZE: Final = 1e-9
 
 
 class LinearNearest:

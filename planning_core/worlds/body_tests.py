@@ -12,7 +12,7 @@ a world's :class:`~planning_core.worlds.segment_tests.Obstacles`.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Final, Sequence
 
 from planning_core.worlds.segment_tests import (
     DISC,
@@ -26,7 +26,7 @@ from planning_core.worlds.segment_tests import (
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
-SNAP = 1e-12
+SNAP: Final = 1e-12
 """place(): |cos| or |sin| below this is 0, so quarter turns are exact."""
 
 

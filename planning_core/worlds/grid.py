@@ -19,7 +19,7 @@ import math
 import random
 from array import array
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Final, Sequence
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
@@ -27,7 +27,7 @@ from planning_core.problem import Problem
 SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
 # far below the 0.1 goal tolerance and far inside its cell.
-EDGE_NUDGE = 1e-6
+EDGE_NUDGE: Final = 1e-6
 LIST_MAX_CELLS = 1 << 20
 """Maps up to this many cells keep their cells as a list, which the hot loops index
 faster than bytes (8 bytes a cell; docs/parameter-history.md); larger maps share the
@@ -191,8 +191,8 @@ def segment_meets_cell(x0: float, y0: float, x1: float, y1: float,
     return None
 
 
-_SIDE_STEPS = ((1, 0), (-1, 0), (0, 1), (0, -1))
-_CORNER_STEPS = ((1, 1), (1, -1), (-1, 1), (-1, -1))
+_SIDE_STEPS: Final = ((1, 0), (-1, 0), (0, 1), (0, -1))
+_CORNER_STEPS: Final = ((1, 1), (1, -1), (-1, 1), (-1, -1))
 
 
 def _steps(diagonal: bool) -> tuple[tuple[int, int], ...]:

@@ -23,6 +23,7 @@ from __future__ import annotations
 import heapq
 import math
 from array import array
+from typing import Final
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
@@ -31,12 +32,12 @@ _DIAGONAL = math.sqrt(2.0)
 # Dijkstra's steps (column, row, cost); a cell's ``way`` is 1 + the index of the
 # step that last lowered its distance (0: none), so 1 byte a cell says where its
 # chain goes next.
-_STEPS = ((1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
+_STEPS: Final = ((1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
           (1, 1, _DIAGONAL), (1, -1, _DIAGONAL), (-1, 1, _DIAGONAL), (-1, -1, _DIAGONAL))
 # Unit vector from a cell's centre toward the next cell of its chain, by ``way``
 # (the chain through step (dc, dr) goes back by (-dc, -dr)).
-_TOWARD_X = (0.0,) + tuple(-dc / cost for dc, _, cost in _STEPS)
-_TOWARD_Y = (0.0,) + tuple(-dr / cost for _, dr, cost in _STEPS)
+_TOWARD_X: Final = (0.0,) + tuple(-dc / cost for dc, _, cost in _STEPS)
+_TOWARD_Y: Final = (0.0,) + tuple(-dr / cost for _, dr, cost in _STEPS)
 
 
 class CellDistanceToGoal:

@@ -12,18 +12,18 @@ sample. :func:`joints` is the single copy of the arm's forward kinematics
 from __future__ import annotations
 
 import math
-from typing import Any, Sequence
+from typing import Any, Final, Sequence
 
 from planning_core.nearest.kdtree import BoxMetric
 from planning_core.worlds.body_tests import SNAP
 from planning_core.worlds.segment_tests import SegmentTests
 
-TAU = 2.0 * math.pi
-REACH_WORTH = 3
+TAU: Final = 2.0 * math.pi
+REACH_WORTH: Final = 3
 """A clearance that skips fewer samples than this is not worth its cost here..."""
-REACH_PAUSE = 4
+REACH_PAUSE: Final = 4
 """...so the next this many samples are tested one by one before another is taken."""
-MOST = 1e9
+MOST: Final = 1e9
 """The most samples one reach skips."""
 
 

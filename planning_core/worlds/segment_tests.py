@@ -10,12 +10,14 @@ that the arm's hot path (a link free? how far from everything?) runs compiled
 from __future__ import annotations
 
 import math
-from typing import Optional, Sequence
+from typing import Final, Optional, Sequence
 
 Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
-RECT, DISC, POLYGON = 0, 1, 2
+RECT: Final = 0
+DISC: Final = 1
+POLYGON: Final = 2
 """Obstacle kinds, as :class:`SegmentTests` stores them."""
 
 

@@ -61,6 +61,7 @@ import math
 import random
 import sys
 from dataclasses import dataclass
+from typing import Final
 
 from planning_core.interrupt import Stop
 from planning_core.space_information import AnySpaceInformation
@@ -68,11 +69,11 @@ from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
-_GOAL_DISTANCE_OFFSET = 1e-3
+_GOAL_DISTANCE_OFFSET: Final = 1e-3
 # Each selection of a close-to-goal motion inflates its distance by this factor.
-_CLOSE_SAMPLE_INFLATION = 1.1
+_CLOSE_SAMPLE_INFLATION: Final = 1.1
 # Share of uninteresting motions that are kept anyway.
-_KEEP_UNINTERESTING = 0.05
+_KEEP_UNINTERESTING: Final = 0.05
 
 
 @dataclass(frozen=True)

@@ -60,7 +60,7 @@ from __future__ import annotations
 import heapq
 import random
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Final
 
 from planning_core.interrupt import Stop
 from planning_core.space_information import AnySpaceInformation
@@ -297,7 +297,7 @@ def _fixed_controls(si, params: RGRRTParams) -> list:
 
 # Ranks a braking line that meets a blocked cell after every free one (well below
 # the distance's "unreachable", so those still order among themselves).
-_BLOCKED_BRAKING_PENALTY = 1e6
+_BLOCKED_BRAKING_PENALTY: Final = 1e6
 
 
 def stopping_point_key(along, si: AnySpaceInformation):
