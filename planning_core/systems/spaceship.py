@@ -12,7 +12,10 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass
-from typing import ClassVar, Final
+from typing import TYPE_CHECKING, ClassVar, Final, Optional
+
+if TYPE_CHECKING:  # a type only: the validator's ship check needs no grid module
+    from planning_core.worlds.grid import GridWorld
 
 # Final: compiled code reads these as constants, not from the module's dict per slice.
 SLICES: Final = 20
@@ -106,7 +109,7 @@ class Spaceship(SpaceshipVariables):
         ahead = math.hypot(dx, dy) * (1.0 / (2.0 * self.max_thrust))
         return x + dx * ahead, y + dy * ahead
 
-    def propagate_while(self, state: State, control: Control, grid=None,
+    def propagate_while(self, state: State, control: Control, grid: Optional[GridWorld] = None,
                         slices_out: list[State] | None = None) -> State | None:
         """Apply ``control`` from ``state`` for one timestep, slice by slice.
 
@@ -116,8 +119,8 @@ class Spaceship(SpaceshipVariables):
         call (docs/hot-paths.md); at rest, ``atan2(dy, dx) + theta`` as SPEC
         writes it (theta from +x, or from -x for a velocity of -0.0).
 
-        ``grid``: the occupancy grid the ship flies over (anything with row-major
-        ``cells`` as bytes, ``width`` and ``height``, such as a GridWorld): None is
+        ``grid``: the occupancy grid the ship flies over (typed, so that compiled
+        code reads its row-major ``cells``, ``width`` and ``height`` natively): None is
         returned as soon as a slice's position is outside it or in a blocked cell
         (SPEC 1). The test is written inline, not called: this loop is the ship
         planners' hot path (docs/parameter-history.md). With ``slices_out``, the
@@ -130,9 +133,10 @@ class Spaceship(SpaceshipVariables):
         # direction (its unit vector: divided by the speed below).
         push_x, push_y = step * math.cos(theta), step * math.sin(theta)
         tested = grid is not None
-        cells: bytes = grid.cells if tested else b""
-        width: int = grid.width if tested else 0
-        height: int = grid.height if tested else 0
+        if grid is not None:
+            cells, width, height = grid.cells, grid.width, grid.height
+        else:
+            cells, width, height = b"", 0, 0
         for _ in range(SLICES):
             speed = math.sqrt(dx * dx + dy * dy)
             if speed > 0.0:
