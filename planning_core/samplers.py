@@ -1,5 +1,6 @@
 """Uniform samples on plain floats, compiled (mypyc, ``planning_core.compiled``):
-the kinoplan planners draw a target state and a control every iteration.
+the kinoplan planners draw a target state and a control every iteration, KPIECE1 a
+motion of a cell by a normal draw.
 
 The draws are the references' own, in the same order: one ``rng.random()`` per
 coordinate, ``low + span * r`` (``StateSpace.sample_uniform``,
@@ -8,6 +9,7 @@ coordinate, ``low + span * r`` (``StateSpace.sample_uniform``,
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 
@@ -20,6 +22,20 @@ def randint(rng: Any, a: int, b: int) -> int:
     while r >= n:
         r = rng.getrandbits(k)
     return a + r
+
+
+def gauss(rng: Any, mu: float, sigma: float) -> float:
+    """``rng.gauss(mu, sigma)``: the same draws and the same cached second value
+    (CPython's Box-Muller form, which keeps it in ``rng.gauss_next``; a test holds
+    it to ``rng.gauss``)."""
+    z = rng.gauss_next
+    rng.gauss_next = None
+    if z is None:
+        x2pi = rng.random() * (2.0 * math.pi)
+        g2rad = math.sqrt(-2.0 * math.log(1.0 - rng.random()))
+        z = math.cos(x2pi) * g2rad
+        rng.gauss_next = math.sin(x2pi) * g2rad
+    return mu + z * sigma
 
 
 class BoxSampler:

@@ -64,6 +64,7 @@ from dataclasses import dataclass
 from typing import Final
 
 from planning_core.interrupt import Stop
+from planning_core.samplers import gauss, randint
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
@@ -172,8 +173,8 @@ class _CellGrid:
         self.interior: list = []
         self.exterior_count = 0
         self._pushes = 0
-        self._offsets = [tuple((1 if k == axis else 0) * sign for k in range(dims))
-                         for axis in range(dims) for sign in (1, -1)]
+        # The axis neighbours, in this order: +1 then -1 along each axis in turn.
+        self._steps = [(axis, sign) for axis in range(dims) for sign in (1, -1)]
 
     def is_interior(self, cell: _Cell) -> bool:
         return cell.neighbors >= self.full
@@ -192,8 +193,10 @@ class _CellGrid:
         self.cells[cell.coord] = cell
         self.exterior_count += 1
         coord = cell.coord
-        for offset in self._offsets:
-            other = self.cells.get(tuple(c + o for c, o in zip(coord, offset)))
+        for axis, sign in self._steps:
+            near = list(coord)
+            near[axis] += sign
+            other = self.cells.get(tuple(near))
             if other is None:
                 continue
             cell.neighbors += 1
@@ -306,7 +309,7 @@ class _Search:
         motions = cell.motions
         cell.selections += 1
         # Half-normal over the cell's motions, the newest most likely.
-        back = int(abs(rng.gauss(0.0, len(motions) / 3.0)))
+        back = int(abs(gauss(rng, 0.0, len(motions) / 3.0)))
         return motions[max(0, len(motions) - 1 - back)], cell, False
 
     def motion(self, state, steering: bool) -> tuple[object, list]:
@@ -320,7 +323,7 @@ class _Search:
             return (None, []) if motion is None else (motion[1], [motion[0]])
         else:
             control = si.sample_control(rng)
-            wanted = rng.randint(params.min_steps, params.max_steps)
+            wanted = randint(rng, params.min_steps, params.max_steps)
         steps = []
         for _ in range(wanted):
             state = si.propagate_valid(state, control)

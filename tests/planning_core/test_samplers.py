@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from planning_core.samplers import BoxSampler, ControlSampler, randint
+from planning_core.samplers import BoxSampler, ControlSampler, gauss, randint
 from planning_core.spaces import StateSpace, Variable
 from planning_core.systems import load
 
@@ -17,6 +17,16 @@ def test_randint_is_the_random_modules(a, b):
     mine, theirs = random.Random(a * 7 + b), random.Random(a * 7 + b)
     assert [randint(mine, a, b) for _ in range(500)] == [theirs.randint(a, b) for _ in range(500)]
     assert mine.random() == theirs.random()  # and the stream goes on alike
+
+
+@pytest.mark.parametrize("sigma", [0.0, 1.0 / 3.0, 7.5])
+def test_gauss_is_the_random_modules_with_its_cached_second_value(sigma):
+    mine, theirs = random.Random(5), random.Random(5)
+    for k in range(2001):  # odd and even calls, other draws between some of them
+        assert gauss(mine, 0.5, sigma) == theirs.gauss(0.5, sigma)
+        if k % 7 == 0:
+            assert mine.random() == theirs.random()
+        assert mine.getstate() == theirs.getstate()
 
 
 def test_a_bounded_space_samples_as_its_reference_method():
