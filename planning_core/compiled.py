@@ -34,6 +34,10 @@ MODULES = (
     "planning_core.worlds.link_tests",
     "planning_core.grid_space_information",
     "planning_core.samplers",
+    "planning_core.goal",
+    "rrt_cli.planners.base",
+    "rrt_cli.planners.tree",
+    "rrt_cli.planners.rrtconnect",
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 

@@ -13,6 +13,7 @@ target sampling, with the map's own cells as the grid.
 from __future__ import annotations
 
 import random
+from collections.abc import Sequence
 
 from planning_core.problem import Problem
 from planning_core.worlds.grid_cells import sample_free_point
@@ -39,7 +40,7 @@ class FrontierCells:
     def __len__(self) -> int:
         return len(self.cells)
 
-    def cover(self, point: Point) -> None:
+    def cover(self, point: Sequence[float]) -> None:
         """Record a node at ``point`` (strictly inside the map)."""
         width = self.width
         cell = int(point[1]) * width + int(point[0])

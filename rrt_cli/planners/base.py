@@ -6,6 +6,7 @@ import functools
 import time
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import Any
 
 from planning_core.interrupt import Interrupted
 
@@ -72,7 +73,7 @@ class PlanResult:
     """
 
     status: PlanStatus
-    system: object
+    system: Any
     path: tuple[tuple[float, ...], ...]
     path_controls: tuple[tuple[float, ...], ...]
     edges: tuple[Edge, ...]

@@ -92,7 +92,7 @@ class _Tree(MotionTree):
         # The goal tree's edges are travelled child -> parent by the final path.
         self.toward_root = toward_root
 
-    def path_to_root(self, node: int) -> list[tuple[float, float]]:
+    def path_to_root(self, node: int) -> list[tuple[float, ...]]:
         return [self.states[k] for k in reversed(self.path_to(node))]
 
 
@@ -110,7 +110,7 @@ class _Grower:
                                                      params.min_extension, params.wall_clearance)
         self.rng = rng
 
-    def grow(self, tree: _Tree, target: tuple[float, float],
+    def grow(self, tree: _Tree, target: tuple[float, ...],
              connecting: bool = False) -> tuple[_Grow, int]:
         """The outcome and the index of the node added (-1 when trapped)."""
         near = tree.index.nearest(target)
