@@ -11,9 +11,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from collections.abc import Sequence
+from typing import Final
 
-GOAL_TOLERANCE = 0.1
-PLANNER_MARGIN = 1e-9
+GOAL_TOLERANCE: Final = 0.1
+PLANNER_MARGIN: Final = 1e-9
 
 
 @dataclass(frozen=True)

@@ -28,11 +28,11 @@ def gauss(rng: Any, mu: float, sigma: float) -> float:
     """``rng.gauss(mu, sigma)``: the same draws and the same cached second value
     (CPython's Box-Muller form, which keeps it in ``rng.gauss_next``; a test holds
     it to ``rng.gauss``)."""
-    z = rng.gauss_next
+    z: float | None = rng.gauss_next
     rng.gauss_next = None
     if z is None:
-        x2pi = rng.random() * (2.0 * math.pi)
-        g2rad = math.sqrt(-2.0 * math.log(1.0 - rng.random()))
+        x2pi: float = rng.random() * (2.0 * math.pi)
+        g2rad = math.sqrt(-2.0 * math.log(1.0 - float(rng.random())))
         z = math.cos(x2pi) * g2rad
         rng.gauss_next = math.sin(x2pi) * g2rad
     return mu + z * sigma

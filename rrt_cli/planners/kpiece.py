@@ -75,6 +75,7 @@ _GOAL_DISTANCE_OFFSET: Final = 1e-3
 _CLOSE_SAMPLE_INFLATION: Final = 1.1
 # Share of uninteresting motions that are kept anyway.
 _KEEP_UNINTERESTING: Final = 0.05
+_EPSILON: Final = sys.float_info.epsilon
 
 
 @dataclass(frozen=True)
@@ -158,6 +159,10 @@ class _Cell:
         self.version = 0
 
 
+_HeapEntry = tuple[float, int, int, _Cell]
+"""(-importance, push counter, the cell's version when pushed, the cell)"""
+
+
 class _CellGrid:
     """The grid over the projection, split into exterior and interior cells.
 
@@ -169,8 +174,8 @@ class _CellGrid:
     def __init__(self, dims: int):
         self.cells: dict[tuple[int, ...], _Cell] = {}
         self.full = 2 * dims  # axis neighbours of an interior cell
-        self.exterior: list = []
-        self.interior: list = []
+        self.exterior: list[_HeapEntry] = []
+        self.interior: list[_HeapEntry] = []
         self.exterior_count = 0
         self._pushes = 0
         # The axis neighbours, in this order: +1 then -1 along each axis in turn.
@@ -278,6 +283,7 @@ class _Search:
         self.grid = _CellGrid(len(self.project(si.start)))
         self.close = _CloseSamples(params.close_samples)
         self.tree = MotionTree(si.start)
+        self.goal = si.goal
         self.node_cells: list[_Cell] = []
         self.iteration = 1
         along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
@@ -336,8 +342,11 @@ class _Search:
         """The motion reaches a new cell or one with under 2/3 of the average coverage."""
         cells = self.grid.cells
         two_thirds_average = (2 * len(self.tree)) / (3 * len(cells))
-        return any(cells.get(c) is None or cells[c].coverage <= two_thirds_average
-                   for c in coords)
+        for coord in coords:
+            cell = cells.get(coord)
+            if cell is None or cell.coverage <= two_thirds_average:
+                return True
+        return False
 
     def add_motion(self, node: int, control, steps, coords) -> int | None:
         """Chain the motion's steps into the tree; the goal node, if one is reached."""
@@ -345,7 +354,7 @@ class _Search:
             node = self.tree.add(node, new_state, control)
             distance = self.goal_distance(new_state)
             self.file_node(node, coord, distance)
-            if self.si.goal.reached(new_state):
+            if self.goal.reached(new_state):
                 return node
             self.close.consider(node, distance)
         return None
@@ -436,7 +445,7 @@ def _select_cell(grid: _CellGrid, rng: random.Random, border_fraction: float) ->
     exterior = rng.random() < max(border_fraction, exterior_share)
     cell = grid.top(exterior) or grid.top(not exterior)
     assert cell is not None, "a grid with cells has a top cell"
-    if cell.score < sys.float_info.epsilon:
+    if cell.score < _EPSILON:
         # Scores only shrink; before they underflow, lift them all (as OMPL does).
         for other in grid.cells.values():
             other.score += 1.0 + math.log(other.created)
