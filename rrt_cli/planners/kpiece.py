@@ -60,14 +60,18 @@ import heapq
 import math
 import random
 import sys
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Final
+from typing import TYPE_CHECKING, Any, Final, Optional
 
 from planning_core.interrupt import Stop
 from planning_core.samplers import gauss, randint
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, run_tree_search
+
+if TYPE_CHECKING:  # a type only: kinoplan runs need no grid module
+    from planning_core.worlds.grid_distance import CellDistanceToGoal
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
 _GOAL_DISTANCE_OFFSET: Final = 1e-3
@@ -286,9 +290,16 @@ class _Search:
         self.goal = si.goal
         self.node_cells: list[_Cell] = []
         self.iteration = 1
-        along = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
-        self.goal_distance = ((lambda state: along(state[0], state[1])) if along is not None
-                              else si.goal.distance)
+        # Position -> distance along the free cells, where the world offers it.
+        self.along: Optional[CellDistanceToGoal] = (
+            si.distance_along_free_space(stop) if params.goal_distance == "cells" else None)
+
+    def goal_distance(self, state: Sequence[float]) -> float:
+        """The distance to the goal that scores cells and ranks close motions."""
+        along = self.along
+        if along is not None:
+            return along(state[0], state[1])
+        return self.goal.distance(state)
 
     def file_node(self, node: int, coord, distance: float) -> None:
         """Put a node in its cell (made on first use); one step of coverage."""
@@ -408,20 +419,30 @@ def _make_projection(si, params: KPIECEParams):
         return si.system.cell_projection(params.cells_per_axis)
     world = si.world
     cell_size = params.cell_size or derived_cell_size(world.width, world.height)
-    return _projection(si.system, 1.0 / cell_size, params.velocity_cell_size)
+    return _GridProjection(si.system, 1.0 / cell_size, params.velocity_cell_size)
 
 
-def _projection(system, inverse_cell: float, velocity_cell_size: float | None):
+class _GridProjection:
     """State -> integer cell coordinates of its position (and velocity)."""
-    px, py = system.position_indices
-    floor = math.floor
-    if velocity_cell_size is None or not system.velocity_indices:
-        return lambda state: (floor(state[px] * inverse_cell), floor(state[py] * inverse_cell))
-    vx, vy = system.velocity_indices
-    inverse_velocity = 1.0 / velocity_cell_size
-    return lambda state: (floor(state[px] * inverse_cell), floor(state[py] * inverse_cell),
-                          floor(state[vx] * inverse_velocity),
-                          floor(state[vy] * inverse_velocity))
+
+    def __init__(self, system: Any, inverse_cell: float, velocity_cell_size: float | None):
+        self.px: int = system.position_indices[0]
+        self.py: int = system.position_indices[1]
+        self.inverse_cell = inverse_cell
+        self.with_velocity = velocity_cell_size is not None and bool(system.velocity_indices)
+        self.vx: int = system.velocity_indices[0] if self.with_velocity else 0
+        self.vy: int = system.velocity_indices[1] if self.with_velocity else 0
+        self.inverse_velocity = 1.0 / velocity_cell_size if velocity_cell_size else 0.0
+
+    def __call__(self, state: Sequence[float]) -> tuple[int, ...]:
+        inverse_cell = self.inverse_cell
+        x = math.floor(state[self.px] * inverse_cell)
+        y = math.floor(state[self.py] * inverse_cell)
+        if not self.with_velocity:
+            return (x, y)
+        inverse_velocity = self.inverse_velocity
+        return (x, y, math.floor(state[self.vx] * inverse_velocity),
+                math.floor(state[self.vy] * inverse_velocity))
 
 
 def _steer_to_goal(si: AnySpaceInformation, state, goal_distance, tries: int,
