@@ -68,7 +68,7 @@ from planning_core.interrupt import Stop
 from planning_core.samplers import gauss, randint
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
-from rrt_cli.planners.tree import MotionTree, run_tree_search
+from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
 
 if TYPE_CHECKING:  # a type only: kinoplan runs need no grid module
     from planning_core.worlds.grid_distance import CellDistanceToGoal
@@ -277,7 +277,7 @@ def _bisect(items: list, item) -> int:
     return lo
 
 
-class _Search:
+class _Search(TreeSearch):
     """One KPIECE1 run: the tree, the projection grid and the close-to-goal motions."""
 
     def __init__(self, si: AnySpaceInformation, rng: random.Random, params: KPIECEParams,
@@ -289,7 +289,7 @@ class _Search:
         self.tree = MotionTree(si.start)
         self.goal = si.goal
         self.node_cells: list[_Cell] = []
-        self.iteration = 1
+        self.iterations = 0
         # Position -> distance along the free cells, where the world offers it.
         self.along: Optional[CellDistanceToGoal] = (
             si.distance_along_free_space(stop) if params.goal_distance == "cells" else None)
@@ -305,8 +305,9 @@ class _Search:
         """Put a node in its cell (made on first use); one step of coverage."""
         cell = self.grid.cells.get(coord)
         if cell is None:
-            cell = _Cell(coord, (1.0 + math.log(self.iteration))
-                         / (_GOAL_DISTANCE_OFFSET + distance), self.iteration)
+            created = self.iterations + 1  # the start's cell: 1
+            cell = _Cell(coord, (1.0 + math.log(created))
+                         / (_GOAL_DISTANCE_OFFSET + distance), created)
             cell.motions.append(node)
             cell.coverage = 1
             self.grid.add(cell)
@@ -370,23 +371,16 @@ class _Search:
             self.close.consider(node, distance)
         return None
 
-    @property
-    def iterations(self) -> int:
-        return self.iteration - 1
-
     def begin(self) -> None:
         """File the start in its cell and among the close motions."""
         start_distance = self.goal_distance(self.si.start)
         self.file_node(0, self.project(self.si.start), start_distance)
         self.close.consider(0, start_distance)
 
-    def exhausted(self) -> str:
-        return ""  # a cell always has a motion to expand
-
     def iterate(self) -> int | None:
         """One expansion (steps 1-4 of the module docstring); a goal node or None."""
         params = self.params
-        self.iteration += 1
+        self.iterations += 1
         node, cell, steering = self.pick()
         control, steps = self.motion(self.tree.states[node], steering)
         if len(steps) >= (1 if steering else params.min_steps):

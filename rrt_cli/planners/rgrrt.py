@@ -65,7 +65,7 @@ from typing import Any, Final
 from planning_core.interrupt import Stop
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
-from rrt_cli.planners.tree import MotionTree, run_tree_search
+from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
 
 
 @dataclass(frozen=True)
@@ -159,7 +159,7 @@ class _ReachableSets:
         return best
 
 
-class _Search:
+class _Search(TreeSearch):
     """One RG-RRT run: the tree, the reachable sets and the best-first queue."""
 
     def __init__(self, si: AnySpaceInformation, rng: random.Random, params: RGRRTParams,

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from typing import Any, Callable, Optional
 
-from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
 
 
 class MotionTree:
@@ -57,7 +58,29 @@ class MotionTree:
                           message)
 
 
-def run_tree_search(si, stop, make_search, name: str) -> PlanResult:
+class TreeSearch:
+    """What :func:`run_tree_search` drives: one planner's run between iterations
+    (a base class, so that compiled, the loop's calls are native)."""
+
+    tree: MotionTree
+    iterations: int
+    """Iterations done so far."""
+
+    def begin(self) -> Optional[int]:
+        """Set out from the start; a goal node or None."""
+        raise NotImplementedError
+
+    def exhausted(self) -> str:
+        """Why no node is left to extend, or ""."""
+        return ""
+
+    def iterate(self) -> Optional[int]:
+        """One iteration; a goal node or None."""
+        raise NotImplementedError
+
+
+def run_tree_search(si: Any, stop: StopCondition, make_search: Callable[[], TreeSearch],
+                    name: str) -> PlanResult:
     """The loop of the kinodynamic tree planners: ``make_search()`` sets up (on the
     clock); a start in the goal region is the answer; otherwise ``search.begin()``,
     then ``search.iterate()`` until one returns a goal node, a limit of ``stop``
