@@ -46,7 +46,8 @@ class CellDistanceToGoal:
     ``stop`` is asked every POLL_EVERY heap pops (:mod:`planning_core.interrupt`)."""
 
     def __init__(self, problem: Problem, unreachable: float = 1e12, stop: Stop = None):
-        width, height, blocked = problem.width, problem.height, problem.blocked
+        width, height = problem.width, problem.height
+        blocked = bytes(problem.blocked)  # typed: compiled, the search indexes it natively
         self.width: int = width
         self.height: int = height
         self.goal = problem.goal
@@ -58,12 +59,13 @@ class CellDistanceToGoal:
         if not blocked[self.goal_cell]:
             self._search(blocked, stop)
 
-    def _search(self, blocked, stop: Stop) -> None:
+    def _search(self, blocked: bytes, stop: Stop) -> None:
         width, height = self.width, self.height
         distance, way = self.cell_distance, self._way
         distance[self.goal_cell] = 0.0
-        queue = [(0.0, self.goal_cell)]
-        steps = [(dc, dr, cost, code) for code, (dc, dr, cost) in enumerate(_STEPS, 1)]
+        queue: list[tuple[float, int]] = [(0.0, self.goal_cell)]
+        steps: list[tuple[int, int, float, int]] = [
+            (dc, dr, cost, code) for code, (dc, dr, cost) in enumerate(_STEPS, 1)]
         countdown = POLL_EVERY
         while queue:
             countdown -= 1
