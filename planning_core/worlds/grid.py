@@ -19,7 +19,7 @@ import math
 import random
 from array import array
 from dataclasses import dataclass
-from typing import Final, Sequence
+from typing import Any, Final, Sequence
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
@@ -208,7 +208,8 @@ def connected_free_cells(problem: Problem, start_cell: tuple[int, int],
     certainly unreachable. ``stop`` is asked every POLL_EVERY cells
     (:mod:`planning_core.interrupt`).
     """
-    width, height, blocked = problem.width, problem.height, problem.blocked
+    width, height = problem.width, problem.height
+    blocked = bytes(problem.blocked)  # typed: compiled, the fill indexes it natively
     seen = bytearray(width * height)
     col, row = start_cell
     first = row * width + col
@@ -257,7 +258,8 @@ def cells_joined(problem: Problem, a_cell: tuple[int, int], b_cell: tuple[int, i
     after about that room's cells, and an open map after about the cells of one
     chain, where one full fill would visit every cell joined to the start.
     """
-    width, height, blocked = problem.width, problem.height, problem.blocked
+    width, height = problem.width, problem.height
+    blocked = bytes(problem.blocked)  # typed: compiled, the fill indexes it natively
     a = a_cell[1] * width + a_cell[0]
     b = b_cell[1] * width + b_cell[0]
     if blocked[a] or blocked[b]:
@@ -266,25 +268,43 @@ def cells_joined(problem: Problem, a_cell: tuple[int, int], b_cell: tuple[int, i
         return True
     mark = bytearray(width * height)  # 1: filled from a, 2: from b
     mark[a], mark[b] = 1, 2
-    orders = _TOWARD[diagonal]
-    sides = ((array("i", [a]), b_cell, 1, 2), (array("i", [b]), a_cell, 2, 1))
+    orders: dict[tuple[int, int], tuple[tuple[int, int], ...]] = _TOWARD[diagonal]
+    from_a, from_b = array("i", [a]), array("i", [b])
     countdown = POLL_EVERY
     while True:
         countdown -= 1
         if not countdown:
             countdown = POLL_EVERY
             check(stop)
-        for stack, (tc, tr), own, other in sides:
-            if not stack:
-                return False
-            row, col = divmod(stack.pop(), width)
-            for dc, dr in orders[(tc > col) - (tc < col), (tr > row) - (tr < row)]:
-                c, r = col + dc, row + dr
-                if 0 <= c < width and 0 <= r < height:
-                    k = r * width + c
-                    filled = mark[k]
-                    if filled == other:
-                        return True
-                    if not filled and not blocked[k]:
-                        mark[k] = own
-                        stack.append(k)
+        if not from_a:
+            return False
+        if _fill_next(from_a, b_cell, 1, 2, mark, blocked, width, height, orders):
+            return True
+        if not from_b:
+            return False
+        if _fill_next(from_b, a_cell, 2, 1, mark, blocked, width, height, orders):
+            return True
+
+
+def _fill_next(stack: Any, target: tuple[int, int], own: int, other: int, mark: bytearray,
+               blocked: bytes, width: int, height: int,
+               orders: dict[tuple[int, int], tuple[tuple[int, int], ...]]) -> bool:
+    """One step of a :func:`cells_joined` fill: pop a cell of ``stack`` and fill its
+    free neighbours, the step toward ``target`` last (popped next); True when a
+    neighbour is the other fill's. (A function of typed arguments: compiled, the
+    loop runs natively.)"""
+    tc, tr = target
+    index = int(stack.pop())
+    row = index // width
+    col = index - row * width
+    for dc, dr in orders[(tc > col) - (tc < col), (tr > row) - (tr < row)]:
+        c, r = col + dc, row + dr
+        if 0 <= c < width and 0 <= r < height:
+            k = r * width + c
+            filled = mark[k]
+            if filled == other:
+                return True
+            if not filled and not blocked[k]:
+                mark[k] = own
+                stack.append(k)
+    return False

@@ -8,10 +8,11 @@ from array import array
 from bisect import bisect_right
 from collections.abc import Sequence
 from itertools import accumulate, repeat
+from typing import Final
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 
-_BLOCK = 64
+_BLOCK: Final = 256
 """Cells per block of :class:`FreeCells`: a lookup scans at most one block."""
 
 
@@ -28,7 +29,7 @@ class FreeCells:
     """
 
     def __init__(self, blocked: bytes, stop: Stop = None):
-        self._blocked = bytes(blocked)
+        self._blocked: bytes = bytes(blocked)
         cells = len(blocked)
         # _free_before[j]: free cells in the blocks before block j.
         self._free_before = array("i", [0])
@@ -52,11 +53,11 @@ class FreeCells:
             raise IndexError("free cell index out of range")
         block = bisect_right(self._free_before, k) - 1
         skip = k - self._free_before[block]
-        begin = block * _BLOCK
-        for offset, blocked in enumerate(self._blocked[begin:begin + _BLOCK]):
-            if not blocked:
+        blocked = self._blocked
+        for cell in range(block * _BLOCK, min(len(blocked), (block + 1) * _BLOCK)):
+            if not blocked[cell]:
                 if not skip:
-                    return begin + offset
+                    return cell
                 skip -= 1
         raise AssertionError("block counts out of step with the map")
 

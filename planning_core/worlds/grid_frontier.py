@@ -32,7 +32,7 @@ class FrontierCells:
     def __init__(self, problem: Problem):
         self.width: int = problem.width
         self.height: int = problem.height
-        self.blocked = problem.blocked
+        self.blocked: bytes = bytes(problem.blocked)  # typed: indexed natively, compiled
         self.covered = bytearray(len(problem.blocked))
         self.cells: list[int] = []
         self.slot: dict[int, int] = {}

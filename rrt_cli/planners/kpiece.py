@@ -79,6 +79,7 @@ _GOAL_DISTANCE_OFFSET: Final = 1e-3
 _CLOSE_SAMPLE_INFLATION: Final = 1.1
 # Share of uninteresting motions that are kept anyway.
 _KEEP_UNINTERESTING: Final = 0.05
+# A cell score below this lifts every score (scores only shrink; _select_cell).
 _EPSILON: Final = sys.float_info.epsilon
 
 
