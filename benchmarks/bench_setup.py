@@ -14,17 +14,11 @@ start in the bottom-left cell, goal in the top-right one): the median over
 * Dijkstra over the free cells (``CellDistanceToGoal``), up to ``--dijkstra-max``
   cells a side (the one set-up left that walks every cell of the map).
 
-Part 2, in this process: what sharing the problem's bytes would cost the
-world's hot paths (a list indexes a few ns faster; the world keeps one up to
-``LIST_MAX_CELLS`` cells and shares the bytes beyond): whole planner runs with
-``world.blocked`` as bytes and as a list, taking turns, median seconds and
-their ratio (the outputs must be equal).
-
-Part 3: ``python -m rrt_cli -time T`` for every planner x vehicle on each
+Part 2: ``python -m rrt_cli -time T`` for every planner x vehicle on each
 ``--run-sizes`` map, each run a fresh process: wall time, peak RSS (the child's
 own, through ``benchmarks/launch.py``), status and planning seconds from ``-stats``.
 
-    python -m benchmarks.bench_setup [--sizes 100 1000 3000] [--hot-repeats 5]
+    python -m benchmarks.bench_setup [--sizes 100 1000 3000]
                                      [--run-sizes 3000 7000] [--time 2]
 
 Tables on stdout; progress on stderr.
@@ -113,35 +107,6 @@ def setup_rows(size: int, density: float, repeats: int, dijkstra_max: int) -> li
     return rows
 
 
-HOT_RUNS = [("course/space-3.sw", "spaceship", "rrt", 1), ("random-d20-200.sw", "point", "rrt", 1),
-            ("maze-50.sw", "point", "prmstar", 1), ("maze-20.sw", "spaceship", "kpiece", 1)]
-
-
-def hot_path_rows(repeats: int) -> list[str]:
-    from rrt_cli.planners import PLANNERS
-    from rrt_cli.planners.base import StopCondition
-
-    rows = []
-    for problem_name, vehicle, planner, seed in HOT_RUNS:
-        problem = parse_problem((ROOT / "benchmarks" / "problems" / problem_name).read_text())
-        module = PLANNERS[planner].load()
-        times: dict[str, list[float]] = {"bytes": [], "list": []}
-        outputs = {}
-        for _ in range(repeats):
-            for kind in times:
-                si = grid_space_information(problem, vehicle)
-                si.world.blocked = list(problem.blocked) if kind == "list" else problem.blocked
-                began = time.perf_counter()
-                result = module.solve(si, StopCondition(time_limit=600), random.Random(seed))
-                times[kind].append(time.perf_counter() - began)
-                outputs[kind] = (result.status, result.path, result.edges)
-        assert outputs["bytes"] == outputs["list"], problem_name
-        as_bytes, as_list = statistics.median(times["bytes"]), statistics.median(times["list"])
-        rows.append(f"| {problem_name} | {vehicle} {planner} | {as_list:.3f} | {as_bytes:.3f} | "
-                    f"{as_bytes / as_list:.3f} |")
-    return rows
-
-
 LAUNCHER = ROOT / "benchmarks" / "launch.py"
 
 
@@ -193,7 +158,6 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--dijkstra-max", type=int, default=1000)
     parser.add_argument("--time", type=float, default=2.0)
-    parser.add_argument("--hot-repeats", type=int, default=5, help="0 skips part 2")
     args = parser.parse_args(argv)
     print("| cells a side | start-goal proof | free-cell index | Dijkstra |")
     print("|---:|---|---|---|")
@@ -201,10 +165,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  set-up {size}", file=sys.stderr)
         for row in setup_rows(size, args.density, args.repeats, args.dijkstra_max):
             print(row, flush=True)
-    if args.hot_repeats:
-        print("\n| problem | run | cells as a list, s | as bytes, s | bytes / list |")
-        print("|---|---|---:|---:|---:|")
-        print("\n".join(hot_path_rows(args.hot_repeats)), flush=True)
     if args.run_sizes:
         print(f"\n`-time {args.time:g}`, seed 1, one run each:\n")
         print("| cells a side | run | exit | status | iterations | planning s | wall s | "

@@ -28,7 +28,6 @@ SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
 # far below the 0.1 goal tolerance and far inside its cell.
 EDGE_NUDGE: Final = 1e-6
-LIST_MAX_CELLS = 1 << 20
 """Maps up to this many cells keep their cells as a list, which the hot loops index
 faster than bytes (8 bytes a cell; docs/parameter-history.md); larger maps share the
 problem's bytes."""
@@ -50,16 +49,14 @@ class GridWorld:
         self.problem = problem
         self.width: int = problem.width
         self.height: int = problem.height
-        blocked = problem.blocked
-        self.blocked = list(blocked) if len(blocked) <= LIST_MAX_CELLS else blocked
-        self.cells: bytes = bytes(blocked)
-        """The same cells as bytes: compiled loops index bytes natively, where the list
-        (faster interpreted) is a generic lookup (docs/hot-paths.md)."""
+        self.cells: bytes = bytes(problem.blocked)
+        """Row-major, from the bottom row: 1 where a cell is blocked. Bytes, so that
+        compiled loops index them natively (docs/hot-paths.md)."""
 
     def point_free(self, x: float, y: float) -> bool:
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
             return False
-        return not self.blocked[int(y) * self.width + int(x)]
+        return not self.cells[int(y) * self.width + int(x)]
 
     def point_strictly_inside(self, x: float, y: float) -> bool:
         """Printed points must satisfy ``0 < x < W`` and ``0 < y < H`` (SPEC 2)."""
@@ -131,7 +128,7 @@ class GridWorld:
         :func:`segment_meets_cell`, so grazing a blocked cell's right or top
         edge (which belongs to the neighbour) is not a collision.
         """
-        width, height, blocked = self.width, self.height, self.blocked
+        width, height, blocked = self.width, self.height, self.cells
         if not (self.point_free(x0, y0)):
             return SegmentHit(0.0, math.floor(x0), math.floor(y0))
         dx, dy = x1 - x0, y1 - y0

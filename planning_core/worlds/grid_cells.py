@@ -12,7 +12,7 @@ from typing import Final
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 
-_BLOCK: Final = 256
+_BLOCK: Final = 64
 """Cells per block of :class:`FreeCells`: a lookup scans at most one block."""
 
 
@@ -29,19 +29,21 @@ class FreeCells:
     """
 
     def __init__(self, blocked: bytes, stop: Stop = None):
-        self._blocked: bytes = bytes(blocked)
+        self._blocked = bytes(blocked)
         cells = len(blocked)
-        # _free_before[j]: free cells in the blocks before block j.
+        # _free_before[j]: free cells in the blocks before block j. A map without a
+        # blocked cell needs none: its k-th free cell is cell k.
         self._free_before = array("i", [0])
+        self._all_free = self._blocked.count(0) == cells
         chunk = _BLOCK * POLL_EVERY
-        for begin in range(0, cells, chunk):
+        for begin in range(0, 0 if self._all_free else cells, chunk):
             check(stop)
             end = min(cells, begin + chunk)
             counts = map(self._blocked.count, repeat(0), range(begin, end, _BLOCK),
                          range(begin + _BLOCK, end + _BLOCK, _BLOCK))
             last = self._free_before.pop()
             self._free_before.extend(accumulate(counts, initial=last))
-        self._count = self._free_before[-1]
+        self._count = cells if self._all_free else self._free_before[-1]
 
     def __len__(self) -> int:
         return self._count
@@ -51,13 +53,15 @@ class FreeCells:
             k += self._count
         if not 0 <= k < self._count:
             raise IndexError("free cell index out of range")
+        if self._all_free:
+            return k
         block = bisect_right(self._free_before, k) - 1
         skip = k - self._free_before[block]
-        blocked = self._blocked
-        for cell in range(block * _BLOCK, min(len(blocked), (block + 1) * _BLOCK)):
-            if not blocked[cell]:
+        begin = block * _BLOCK
+        for offset, blocked in enumerate(self._blocked[begin:begin + _BLOCK]):
+            if not blocked:
                 if not skip:
-                    return cell
+                    return begin + offset
                 skip -= 1
         raise AssertionError("block counts out of step with the map")
 

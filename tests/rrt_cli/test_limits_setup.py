@@ -49,6 +49,14 @@ def open_map(size: int = 300) -> Problem:
     return Problem(size, size, bytes(size * size), (0.5, 0.5), (size - 0.5, size - 0.5))
 
 
+def nearly_open_map(size: int = 300) -> Problem:
+    """Open but for one blocked cell mid-map: the free-cell index is built as for any
+    map (one without a blocked cell needs none)."""
+    blocked = bytearray(size * size)
+    blocked[(size // 2) * size + size // 2] = 1
+    return Problem(size, size, bytes(blocked), (0.5, 0.5), (size - 0.5, size - 0.5))
+
+
 def map_text(size: int, density: float = 0.2, seed: int = 1) -> str:
     """The `.sw` text of a random field, start bottom-left, goal top-right."""
     blocked = random_blocked(size, density, seed)
@@ -131,9 +139,12 @@ def test_set_up_loops_ask_stop_and_give_way(name):
 
 def test_free_cells_is_the_list_of_free_cells():
     rng = random.Random(3)
+    maps = [bytes(size) for size in (1, 63, 64, 65, 1000)]  # no blocked cell: no counts kept
+    maps += [bytes([1]) * 70, bytes(199) + bytes([1])]
     for _ in range(200):
         size = rng.randrange(1, 400)
-        blocked = bytes(rng.random() < rng.random() for _ in range(size))
+        maps.append(bytes(rng.random() < rng.random() for _ in range(size)))
+    for blocked in maps:
         listed = [index for index, cell in enumerate(blocked) if not cell]
         cells = FreeCells(blocked)
         assert len(cells) == len(listed)
@@ -155,11 +166,11 @@ def peak_bytes_per_cell(make, cells: int) -> float:
 
 
 def test_set_up_structures_are_compact():
-    problem, small = open_map(100), open_map(60)   # (tracemalloc slows Dijkstra ~10x)
-    # A big map's world shares the problem's bytes (it used to copy them into a
-    # list: 8 B a cell); a small one keeps the faster list.
+    problem, small = nearly_open_map(100), open_map(60)  # (tracemalloc slows Dijkstra ~10x)
+    # The world shares the problem's bytes (it used to copy them into a list: 8 B a cell).
     big = Problem(1100, 1000, bytes(1100 * 1000), (0.5, 0.5), (1.5, 1.5))
     assert peak_bytes_per_cell(lambda: GridWorld(big), 1100 * 1000) < 1
+    assert peak_bytes_per_cell(lambda: GridWorld(problem), 100 * 100) < 1
     # Counts per block of cells, not a list of every free cell (36 B a cell).
     assert peak_bytes_per_cell(lambda: FreeCells(problem.blocked), 100 * 100) < 1
     # A double and a byte a cell, plus the heap (it was two lists of floats: ~98 B).
@@ -175,7 +186,7 @@ def expired() -> StopCondition:
 
 @pytest.mark.parametrize("vehicle,name", [run for run in RUNS if run[1] != "rrt"])
 def test_planner_set_up_gives_way_to_an_expired_time_limit(vehicle, name):
-    si = grid_space_information(open_map(300), vehicle)
+    si = grid_space_information(nearly_open_map(300), vehicle)
     result = PLANNERS[name].load().solve(si, expired(), random.Random(1))
     assert result.status is PlanStatus.TIME_LIMIT
     assert result.message == "during set-up"
