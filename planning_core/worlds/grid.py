@@ -18,7 +18,6 @@ from __future__ import annotations
 import math
 import random
 from array import array
-from dataclasses import dataclass
 from typing import Any, Final, Sequence
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
@@ -28,18 +27,17 @@ SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
 # far below the 0.1 goal tolerance and far inside its cell.
 EDGE_NUDGE: Final = 1e-6
-"""Maps up to this many cells keep their cells as a list, which the hot loops index
-faster than bytes (8 bytes a cell; docs/parameter-history.md); larger maps share the
-problem's bytes."""
 
 
-@dataclass(frozen=True)
 class SegmentHit:
-    """Where a segment first enters a blocked cell (or leaves the map)."""
+    """Where a segment first enters a blocked cell (or leaves the map). (A plain
+    class: compiled, a frozen dataclass is built through its Python ``__init__``.)"""
 
-    fraction: float  # of the segment's length, in [0, 1]
-    column: int
-    row: int
+    def __init__(self, fraction: float, column: int, row: int):
+        self.fraction = fraction
+        """Of the segment's length, in [0, 1]."""
+        self.column = column
+        self.row = row
 
 
 class GridWorld:
@@ -166,26 +164,36 @@ def segment_meets_cell(x0: float, y0: float, x1: float, y1: float,
     interval bookkeeping keeps track of which ends are open so that touching the
     excluded edges does not count.
     """
-    lo, lo_open, hi, hi_open = 0.0, False, 1.0, False
-    for start, delta, cell_lo in ((x0, x1 - x0, column), (y0, y1 - y0, row)):
-        cell_hi = cell_lo + 1
-        if delta == 0.0:
-            if not (cell_lo <= start < cell_hi):
-                return None
-            continue
-        t_enter, t_exit = (cell_lo - start) / delta, (cell_hi - start) / delta
-        # Moving forward, [lo, hi) maps to [t_enter, t_exit); backward, to (t_exit, t_enter].
-        if delta > 0:
-            a, a_open, b, b_open = t_enter, False, t_exit, True
-        else:
-            a, a_open, b, b_open = t_exit, True, t_enter, False
-        if a > lo or (a == lo and a_open):
-            lo, lo_open = a, a_open
-        if b < hi or (b == hi and b_open):
-            hi, hi_open = b, b_open
+    met, lo, lo_open, hi, hi_open = _narrow(0.0, False, 1.0, False, x0, x1 - x0, column)
+    if not met:
+        return None
+    met, lo, lo_open, hi, hi_open = _narrow(lo, lo_open, hi, hi_open, y0, y1 - y0, row)
+    if not met:
+        return None
     if lo < hi or (lo == hi and not lo_open and not hi_open):
         return lo
     return None
+
+
+def _narrow(lo: float, lo_open: bool, hi: float, hi_open: bool, start: float, delta: float,
+            cell_lo: int) -> tuple[bool, float, bool, float, bool]:
+    """The interval of t (ends ``lo``, ``hi``, each open or not) narrowed to where
+    ``start + t * delta`` lies in ``[cell_lo, cell_lo + 1)``; False first when nowhere.
+    Moving forward, ``[cell_lo, cell_hi)`` maps to ``[t_enter, t_exit)``; backward, to
+    ``(t_exit, t_enter]``: the open ends keep touching an excluded edge from counting."""
+    cell_hi = cell_lo + 1
+    if delta == 0.0:
+        return cell_lo <= start < cell_hi, lo, lo_open, hi, hi_open
+    t_enter, t_exit = (cell_lo - start) / delta, (cell_hi - start) / delta
+    if delta > 0:
+        a, a_open, b, b_open = t_enter, False, t_exit, True
+    else:
+        a, a_open, b, b_open = t_exit, True, t_enter, False
+    if a > lo or (a == lo and a_open):
+        lo, lo_open = a, a_open
+    if b < hi or (b == hi and b_open):
+        hi, hi_open = b, b_open
+    return True, lo, lo_open, hi, hi_open
 
 
 _SIDE_STEPS: Final = ((1, 0), (-1, 0), (0, 1), (0, -1))
