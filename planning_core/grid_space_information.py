@@ -10,13 +10,16 @@ holds the kinoplan family's.
 from __future__ import annotations
 
 import random
-from typing import Any, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Optional, Sequence
 
 from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
+
+if TYPE_CHECKING:  # a type only: the validator's runs need no quadtree
+    from planning_core.nearest.quadtree import QuadtreeNearest
 
 
 class SpaceInformation:
@@ -101,7 +104,7 @@ class PositionNearest:
 
     def __init__(self, width: float, height: float):
         from planning_core.nearest.quadtree import QuadtreeNearest  # planners only: start-up
-        self.index: Any = QuadtreeNearest(width, height)
+        self.index: QuadtreeNearest = QuadtreeNearest(width, height)
 
     def add(self, state: Sequence[float]) -> int:
         return self.index.add(state[0], state[1])

@@ -137,7 +137,7 @@ class Spaceship(SpaceshipVariables):
             cells, width, height = grid.cells, grid.width, grid.height
         else:
             cells, width, height = b"", 0, 0
-        for _ in range(SLICES):
+        for _slice in range(SLICES):
             speed = math.sqrt(dx * dx + dy * dy)
             if speed > 0.0:
                 dx, dy = (dx + (dx * push_x - dy * push_y) / speed,
