@@ -35,7 +35,6 @@ class GoalRegion:
 
     def reached(self, state: Sequence[float]) -> bool:
         """The planners' test, a hair inside the tolerance (squared, no sqrt)."""
-        gx, gy = self.point
+        dx, dy = state[0] - self.point[0], state[1] - self.point[1]
         tolerance = self.tolerance
-        return ((state[0] - gx) ** 2 + (state[1] - gy) ** 2
-                <= tolerance * tolerance * (1 - PLANNER_MARGIN))
+        return dx * dx + dy * dy <= tolerance * tolerance * (1 - PLANNER_MARGIN)

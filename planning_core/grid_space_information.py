@@ -18,7 +18,7 @@ from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
 
-if TYPE_CHECKING:  # a type only: the validator's runs need no quadtree
+if TYPE_CHECKING:  # for the annotation only: the quadtree is imported when a planner asks
     from planning_core.nearest.quadtree import QuadtreeNearest
 
 
@@ -77,8 +77,10 @@ class SpaceInformation:
 
     @staticmethod
     def closeness(end: Sequence[float], target: Sequence[float]) -> float:
-        """How far a steering end is from a target: squared position distance."""
-        return (end[0] - target[0]) ** 2 + (end[1] - target[1]) ** 2
+        """How far a steering end is from a target: squared position distance
+        (products, not ``** 2``: compiled, a power is a generic call)."""
+        dx, dy = end[0] - target[0], end[1] - target[1]
+        return dx * dx + dy * dy
 
     def start_in_goal_controls(self) -> Optional[tuple]:
         """For a start already in the goal region: the path's controls, here none

@@ -14,7 +14,7 @@ import random
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar, Final, Optional
 
-if TYPE_CHECKING:  # a type only: the validator's ship check needs no grid module
+if TYPE_CHECKING:  # for the annotation only: nothing more imported at run time
     from planning_core.worlds.grid import GridWorld
 
 # Final: compiled code reads these as constants, not from the module's dict per slice.

@@ -70,7 +70,7 @@ from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
 
-if TYPE_CHECKING:  # a type only: kinoplan runs need no grid module
+if TYPE_CHECKING:  # for the annotation only: nothing more imported at run time
     from planning_core.worlds.grid_distance import CellDistanceToGoal
 
 # Keeps the initial score finite for a cell that contains the goal (as OMPL does).
