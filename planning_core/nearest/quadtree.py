@@ -30,6 +30,18 @@ class _Node:
         return (1 if x >= self.cx else 0) + (2 if y >= self.cy else 0)
 
 
+def _push(stack: list[_Node], top: int, node: _Node) -> int:
+    """Put ``node`` at ``stack[top]`` unless it is an empty leaf (nothing to find
+    there); the new top. The list only grows: no pop shrinks and regrows it."""
+    if node.children is None and not node.indices:
+        return top
+    if top == len(stack):
+        stack.append(node)
+    else:
+        stack[top] = node
+    return top + 1
+
+
 class _Scan:
     """What a query keeps while the walk visits leaves: ``scan`` reads a leaf's
     points and returns the squared distance to prune by from then on."""
@@ -90,8 +102,10 @@ class QuadtreeNearest:
         quadrant first, ``keep.scan`` reading each leaf that has points."""
         bound = math.inf
         stack = [self.root]
-        while stack:
-            node = stack.pop()
+        top = 1
+        while top:
+            top -= 1
+            node = stack[top]
             # Squared distance from the query to the node's box.
             gx = node.x0 - x if x < node.x0 else (x - node.x1 if x > node.x1 else 0.0)
             gy = node.y0 - y if y < node.y0 else (y - node.y1 if y > node.y1 else 0.0)
@@ -104,10 +118,10 @@ class QuadtreeNearest:
                 continue
             # Push the far quadrants first so the query's own quadrant pops first.
             q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)  # node.quadrant, inline
-            stack.append(children[3 - q])
-            stack.append(children[q ^ 1])
-            stack.append(children[q ^ 2])
-            stack.append(children[q])
+            top = _push(stack, top, children[3 - q])
+            top = _push(stack, top, children[q ^ 1])
+            top = _push(stack, top, children[q ^ 2])
+            top = _push(stack, top, children[q])
 
     def nearest(self, x: float, y: float) -> int:
         """Index of the point closest to (x, y); ties go to the earliest inserted."""

@@ -133,7 +133,11 @@ class GridWorld:
         first_col, last_col = math.floor(x0), math.floor(x1)
         col_step = 1 if last_col >= first_col else -1
         best: SegmentHit | None = None
-        for col in range(first_col, last_col + col_step, col_step):
+        # Columns first_col .. last_col, and rows below, by while loops: compiled, a
+        # range with a step known only at run time is a generic range object.
+        col = first_col - col_step
+        while col != last_col:
+            col += col_step
             # Parameter range of this column's slab [col, col+1], clipped to [0, 1].
             if dx == 0.0:
                 t_lo, t_hi = 0.0, 1.0
@@ -144,7 +148,9 @@ class GridWorld:
             row_a, row_b = math.floor(ya), math.floor(yb)
             row_step = 1 if row_b >= row_a else -1
             # One extra row each way absorbs rounding at exact row boundaries.
-            for row in range(row_a - row_step, row_b + 2 * row_step, row_step):
+            row, last_row = row_a - 2 * row_step, row_b + row_step
+            while row != last_row:
+                row += row_step
                 outside = not (0 <= col < width and 0 <= row < height)
                 if not outside and not blocked[row * width + col]:
                     continue
