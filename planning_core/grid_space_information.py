@@ -50,7 +50,8 @@ class SpaceInformation:
     def propagate_valid(self, state: Sequence[float], control: Any) -> Any:
         """Kinodynamic: where ``control`` leads from ``state`` if every slice is
         valid and the end prints strictly inside the map; else None."""
-        end = self.system.propagate_while(state, control, self.world)
+        end: Optional[tuple[float, ...]] = self.system.propagate_while(state, control,
+                                                                       self.world)
         if end is None or not (end[0] > 0.0 and end[1] > 0.0):
             return None
         return end
@@ -76,7 +77,7 @@ class SpaceInformation:
         return PositionNearest(self.world.width, self.world.height)
 
     @staticmethod
-    def closeness(end: Sequence[float], target: Sequence[float]) -> float:
+    def closeness(end: tuple[float, ...], target: tuple[float, ...]) -> float:
         """How far a steering end is from a target: squared position distance
         (products, not ``** 2``: compiled, a power is a generic call)."""
         dx, dy = end[0] - target[0], end[1] - target[1]
@@ -108,10 +109,10 @@ class PositionNearest:
         from planning_core.nearest.quadtree import QuadtreeNearest  # planners only: start-up
         self.index: QuadtreeNearest = QuadtreeNearest(width, height)
 
-    def add(self, state: Sequence[float]) -> int:
+    def add(self, state: tuple[float, ...]) -> int:
         return self.index.add(state[0], state[1])
 
-    def nearest(self, target: Sequence[float]) -> int:
+    def nearest(self, target: tuple[float, ...]) -> int:
         return self.index.nearest(target[0], target[1])
 
 

@@ -137,6 +137,7 @@ class Spaceship(SpaceshipVariables):
             cells, width, height = grid.cells, grid.width, grid.height
         else:
             cells, width, height = b"", 0, 0
+        right, top = float(width), float(height)  # compared as floats, converted once
         for _slice in range(SLICES):
             speed = math.sqrt(dx * dx + dy * dy)
             if speed > 0.0:
@@ -147,7 +148,7 @@ class Spaceship(SpaceshipVariables):
                 dx, dy = dx + step * math.cos(a), dy + step * math.sin(a)
             x = x + DT * dx
             y = y + DT * dy
-            if tested and (not (0.0 <= x < width and 0.0 <= y < height)
+            if tested and (not (0.0 <= x < right and 0.0 <= y < top)
                            or cells[int(y) * width + int(x)]):
                 return None
             if slices_out is not None:
