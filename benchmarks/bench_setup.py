@@ -39,7 +39,6 @@ import time
 from pathlib import Path
 
 from planning_core.problem_text import parse_problem
-from planning_core.space_information import grid_space_information
 from planning_core.worlds.grid import cells_joined, connected_free_cells
 from planning_core.worlds.grid_cells import FreeCells
 from planning_core.worlds.grid_distance import CellDistanceToGoal
