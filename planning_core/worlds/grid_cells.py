@@ -35,14 +35,15 @@ class FreeCells:
         # blocked cell needs none: its k-th free cell is cell k.
         self._free_before = array("i", [0])
         self._all_free = self._blocked.count(0) == cells
-        chunk = _BLOCK * POLL_EVERY
-        for begin in range(0, 0 if self._all_free else cells, chunk):
-            check(stop)
-            end = min(cells, begin + chunk)
-            counts = map(self._blocked.count, repeat(0), range(begin, end, _BLOCK),
-                         range(begin + _BLOCK, end + _BLOCK, _BLOCK))
-            last = self._free_before.pop()
-            self._free_before.extend(accumulate(counts, initial=last))
+        if not self._all_free:
+            chunk = _BLOCK * POLL_EVERY
+            for begin in range(0, cells, chunk):
+                check(stop)
+                end = min(cells, begin + chunk)
+                counts = map(self._blocked.count, repeat(0), range(begin, end, _BLOCK),
+                             range(begin + _BLOCK, end + _BLOCK, _BLOCK))
+                last = self._free_before.pop()
+                self._free_before.extend(accumulate(counts, initial=last))
         self._count = cells if self._all_free else self._free_before[-1]
 
     def __len__(self) -> int:
