@@ -34,6 +34,7 @@ MODULES = (
     "planning_core.worlds.link_tests",
     "planning_core.grid_space_information",
     "planning_core.samplers",
+    "planning_core.angles",
     "planning_core.goal",
     "rrt_cli.planners.base",
     "rrt_cli.planners.tree",

@@ -228,7 +228,8 @@ def advance_source(dynamics: Dynamics, scheme: str,
     fields += [(f"_{side}{i}", f"{array}[{i}]") for i in bounded
                for side, array in (("lo", "lows"), ("hi", "highs"))]
     lines = ["from __future__ import annotations",
-             "from math import cos, pi, remainder as _rem, sin, sqrt, tan",
+             "from math import cos, pi, sin, sqrt, tan",
+             "from planning_core.angles import remainder as _rem",
              "from typing import Any, Sequence",
              "", "", "class Advance:",
              "    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],",
@@ -259,4 +260,6 @@ def advance_class(source: str) -> type:
     if module is not None:
         return module.Advance
     namespace: dict = {"__name__": compiled.generated_name(source)}
-    return _run(source, namespace, "Advance")
+    advance = _run(source, namespace, "Advance")
+    namespace["_rem"] = math.remainder  # interpreted, the library's is the faster (same floats)
+    return advance

@@ -220,8 +220,8 @@ def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
     the interpreted source)."""
     fresh_or_skip()
     probe = ("from planning_core.compiled import activate\nactivate()\n"
-             "from tests.planning_core.worlds.test_link_tests import check_against_reference,"
-             " check_remainder\n"
+             "from tests.planning_core.worlds.test_link_tests import check_against_reference\n"
+             "from tests.planning_core.test_angles import check_remainder\n"
              "from tests.planning_core.worlds.test_segment_tests import check_segments\n"
              "check_against_reference(seed=7)\ncheck_segments(seed=8)\ncheck_remainder(seed=9)\n"
              "import planning_core.worlds.link_tests as t\nprint(t.__file__)\n")

@@ -26,17 +26,23 @@ import heapq
 import math
 from collections.abc import Callable, Sequence
 from types import SimpleNamespace
-from typing import cast
+from typing import Final, cast
 
 from planning_core import compiled
+from planning_core.angles import remainder
 from planning_core.spaces import (
-    TAU,
-    State,
+    TAU as _SPACES_TAU,
     StateSpace,
     compile_metric_sum,
     distance_lines,
     metric_sum,
 )
+
+State = tuple[float, ...]
+"""As :data:`planning_core.spaces.State`; the compiled build does not follow imports into
+uncompiled modules, and a type from one is ``Any`` here (every ``key[i]`` a generic look-up)."""
+TAU: Final[float] = _SPACES_TAU
+"""2 pi, read natively in the compiled build (a global read from the module's dict else)."""
 
 COMPILED = not __file__.endswith(".py")
 """True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
@@ -62,11 +68,15 @@ class KDTree:
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
         # A native object in the compiled build, so that its methods are direct calls.
         self._metric: BoxMetric = space_metric(space)
-        weight = {i: w for indices, w in space.groups for i in indices}
-        # Only axes the metric weighs are worth splitting on.
-        self._axes = tuple(i for i in sorted(weight) if weight[i] > 0.0)
-        self._weights = tuple(weight.get(i, 0.0) for i in range(space.dimension))
-        self._angles = tuple(i for i, v in enumerate(space.variables) if v.angle)
+        weight: dict[int, float] = {i: w for indices, w in space.groups for i in indices}
+        self._dimension: int = space.dimension
+        # Only axes the metric weighs are worth splitting on. (Typed: compiled, an
+        # untyped index made every key[i] and lo[i] a generic look-up.)
+        self._axes: tuple[int, ...] = tuple(i for i in sorted(weight) if weight[i] > 0.0)
+        self._weights: tuple[float, ...] = tuple(weight.get(i, 0.0)
+                                                 for i in range(space.dimension))
+        self._angles: tuple[int, ...] = tuple(i for i, v in enumerate(space.variables)
+                                              if v.angle)
         self._extent = 0.0  # the largest |angle| added, for the slack
         self._slack_extent, self._slack = 0.0, angle_slack(0.0)  # the last slack and its extent
         self._root: _Node | None = None
@@ -79,7 +89,7 @@ class KDTree:
 
     def add(self, state: Sequence[float]) -> int:
         """Insert a state; returns its index (insertion order)."""
-        point = _checked(state, self.space.dimension)
+        point = _checked(state, self._dimension)
         key, extent = self._key(point)
         if extent > self._extent:
             self._extent = extent
@@ -145,7 +155,7 @@ class KDTree:
 
     def _prepare(self, query: Sequence[float]) -> tuple[State, State, float]:
         """The query, its wrapped key and the angle slack (a few ulps)."""
-        q = _checked(query, self.space.dimension)
+        q = _checked(query, self._dimension)
         if not self._angles:
             return q, q, 0.0
         key, extent = self._key(q)
@@ -398,7 +408,7 @@ class BoxMetric:
                 i = self.order[j]
                 d = b[i] - a[i]
                 if self.angle[i]:
-                    d = math.remainder(d, TAU)
+                    d = remainder(d, TAU)
                 squares += d * d
             if self.single[g]:
                 total += self.weights[g] * abs(d)
@@ -431,7 +441,7 @@ class BoxMetric:
         if not self.any_angle:
             return tuple(state)
         angle = self.angle
-        return tuple([math.remainder(state[i], TAU) if angle[i] else state[i]
+        return tuple([remainder(state[i], TAU) if angle[i] else state[i]
                       for i in range(len(state))])
 
 
@@ -495,7 +505,8 @@ def metric_source(space: StateSpace) -> str:
     gaps = ["    " + line for line in _bound_lines(space)]
     return "\n".join([
         "from __future__ import annotations",
-        "from math import pi, remainder as _rem, sqrt as _sqrt",
+        "from math import pi, sqrt as _sqrt",
+        "from planning_core.angles import remainder as _rem",
         "from typing import Any",
         "from planning_core.nearest.kdtree import BoxMetric",
         "", "", "class Metric(BoxMetric):",

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from typing import Any, Final, Sequence
 
+from planning_core.angles import remainder
 from planning_core.nearest.kdtree import BoxMetric
 from planning_core.worlds.body_tests import SNAP
 from planning_core.worlds.segment_tests import SegmentTests
@@ -25,20 +26,6 @@ REACH_PAUSE: Final = 4
 """...so the next this many samples are tested one by one before another is taken."""
 MOST: Final = 1e9
 """The most samples one reach skips."""
-
-
-def remainder_tau(x: float) -> float:
-    """``math.remainder(x, TAU)``, the same float: computed here (native when
-    compiled) for ``|x| < TAU``, as the library does it (there ``fmod(|x|, TAU)`` is
-    ``|x|``), else by the library (the half-way case, NaN and infinities too)."""
-    m = abs(x)
-    if m < TAU:
-        c = TAU - m
-        if m < c:
-            return math.copysign(1.0, x) * m
-        if m > c:
-            return math.copysign(1.0, x) * -c
-    return math.remainder(x, TAU)
 
 
 def cos_sin(angle: float) -> tuple[float, float]:
@@ -126,7 +113,7 @@ class LinkTests:
         testing each); near an obstacle, where a reach skips little, the next
         ``REACH_PAUSE`` are tested plainly before another is taken."""
         a0, a1, b0, b1 = a[0], a[1], b[0], b[1]
-        d0, d1 = remainder_tau(b0 - a0), remainder_tau(b1 - a1)
+        d0, d1 = remainder(b0 - a0, TAU), remainder(b1 - a1, TAU)
         step0, step1 = d0 / n, d1 / n
         move1 = self.l1 * abs(step0)
         move2 = move1 + self.l2 * abs(step0 + step1)
@@ -134,9 +121,9 @@ class LinkTests:
         while i <= n:
             t = i / n
             if t < 0.5:
-                q0, q1 = remainder_tau(a0 + t * d0), remainder_tau(a1 + t * d1)
+                q0, q1 = remainder(a0 + t * d0, TAU), remainder(a1 + t * d1, TAU)
             else:
-                q0, q1 = remainder_tau(b0 - (1.0 - t) * d0), remainder_tau(b1 - (1.0 - t) * d1)
+                q0, q1 = remainder(b0 - (1.0 - t) * d0, TAU), remainder(b1 - (1.0 - t) * d1, TAU)
             if not self.in_bounds(q0, q1):
                 return i
             ex, ey, tx, ty = joints(self.base_x, self.base_y, self.l1, self.l2, q0, q1)

@@ -17,7 +17,7 @@ from planning_core.kinoplan import link_tests, state_validator
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.space_information import kinoplan_space_information
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, ContinuousWorld
-from planning_core.worlds.link_tests import LinkTests, remainder_tau
+from planning_core.worlds.link_tests import LinkTests
 from planning_core.worlds.shapes import SNAP
 from tests.conftest import ROOT
 
@@ -204,29 +204,6 @@ def check_motions(rng: random.Random, si, old_valid, old_reach, count: int,
 
 def test_valid_reach_joints_and_motions_answer_as_before(monkeypatch):
     check_against_reference(seed=11, tests=count_calls(monkeypatch, LinkTests, "in_bounds"))
-
-
-def check_remainder(seed: int, count: int = 200_000) -> None:
-    """``remainder_tau`` is ``math.remainder(x, 2 pi)`` bit for bit."""
-    rng = random.Random(seed)
-    tau = 2.0 * math.pi
-    special = [0.0, -0.0, 5e-324, math.pi, -math.pi, tau, -tau, 3 * math.pi, 1e300,
-               math.nan, math.inf, -math.inf]
-    special += [math.nextafter(v, w) for v in (math.pi, -math.pi, tau, -tau)
-                for w in (math.inf, -math.inf)]
-    values = special + [rng.uniform(-3 * tau, 3 * tau) for _ in range(count)]
-    values += [rng.uniform(-1e-300, 1e-300) for _ in range(1000)]
-    def outcome(f, x):
-        try:
-            return f(x).hex()
-        except ValueError:  # an infinity
-            return "ValueError"
-    for x in values:
-        assert outcome(remainder_tau, x) == outcome(lambda v: math.remainder(v, tau), x), x
-
-
-def test_remainder_tau_is_the_library_s():
-    check_remainder(seed=2)
 
 
 def test_odd_states():
