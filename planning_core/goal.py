@@ -11,7 +11,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Final
+from typing import TYPE_CHECKING, Final
+
+if TYPE_CHECKING:  # typed for the compiled build; imported only where a family goal is made
+    from planning_core.nearest.kdtree import BoxMetric
 
 GOAL_TOLERANCE: Final = 0.1
 PLANNER_MARGIN: Final = 1e-9
@@ -38,3 +41,22 @@ class GoalRegion:
         dx, dy = state[0] - self.point[0], state[1] - self.point[1]
         tolerance = self.tolerance
         return dx * dx + dy * dy <= tolerance * tolerance * (1 - PLANNER_MARGIN)
+
+
+class MetricGoalTest:
+    """A family goal's planner-side questions, native calls in the compiled build:
+    the distance from a state to the goal's ``target`` under the goal's metric (a
+    kd-tree metric, the same floats as the space's distance) and :meth:`reached`, a
+    hair inside ``tolerance`` as :meth:`GoalRegion.reached` (``kinoplan.FamilyGoal``
+    binds these two to itself)."""
+
+    def __init__(self, metric: BoxMetric, target: tuple[float, ...], tolerance: float) -> None:
+        self.metric = metric
+        self.target = target
+        self.within = tolerance * (1 - PLANNER_MARGIN)
+
+    def distance(self, state: Sequence[float]) -> float:
+        return self.metric.distance(tuple(state), self.target)
+
+    def reached(self, state: Sequence[float]) -> bool:
+        return self.metric.distance(tuple(state), self.target) <= self.within

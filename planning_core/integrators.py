@@ -209,7 +209,9 @@ def advance_source(dynamics: Dynamics, scheme: str,
     ``free(*free_args)``. It returns the last state that passed (``state`` itself
     when the first slice fails) and how many slices did: the same floats as
     :func:`compile_propagator`'s for those slices, the test fused into the loop
-    (the family planners' hot path).
+    (the family planners' hot path). Its method ``propagate_valid(state, control)``
+    holds the values for the K at the end of ``control``: the end state when every
+    slice passed, else None.
 
     The numbers are the object's, not the text's, so one text serves every
     problem of a system and scheme: the compiled build compiles these texts
@@ -223,6 +225,12 @@ def advance_source(dynamics: Dynamics, scheme: str,
     tests += [f"_lo{i} <= {names[i]} <= _hi{i}" for i in bounded]
     if free_args is not None:
         tests.append(f"_free({', '.join(free_args)})")
+    # The last state that passed, kept as floats (a tuple a slice cost an allocation).
+    last = [f"_last{i}" for i in range(n)]
+
+    def keep(indent: str) -> list[str]:
+        return [f"{indent}{kept} = {name}" for kept, name in zip(last, names)]
+
     fields = [("_DT", "dt"), ("_HALF", "dt / 2.0"), ("_SIXTH", "dt / 6.0"), ("_TAU", "2.0 * pi")]
     fields += [(c, f"constants[{j}]") for j, (c, _) in enumerate(dynamics.constants)]
     fields += [(f"_{side}{i}", f"{array}[{i}]") for i in bounded
@@ -242,13 +250,19 @@ def advance_source(dynamics: Dynamics, scheme: str,
              *[f"        {name} = self.{name}" for name, _ in fields],
              "        _free = self._free",
              *_bind(dynamics, "        "),
-             f"        _q: tuple[float, ...] = ({state},)",
+             *keep("        "),
              "        for _k in range(kmax):",
              *_slice_lines(dynamics, scheme, "            "),
              f"            if not ({' and '.join(tests)}):",
-             "                return _q, _k",
-             f"            _q = ({state},)",
-             "        return _q, kmax",
+             f"                return ({', '.join(last)},), _k",
+             *keep("            "),
+             f"        return ({state},), kmax",
+             "",
+             "    def propagate_valid(self, state: Sequence[float],",
+             "                        control: Sequence[Any]) -> tuple[float, ...] | None:",
+             "        k: int = control[-1]",
+             "        end, done = self.advance(state, control, k)",
+             "        return end if done == k else None",
              ""]
     return "\n".join(lines)
 

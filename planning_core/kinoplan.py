@@ -13,7 +13,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Optional
 
-from planning_core.goal import PLANNER_MARGIN
+from planning_core.goal import PLANNER_MARGIN, MetricGoalTest
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, OUTSIDE_BOX, ContinuousWorld
@@ -36,10 +36,20 @@ class FamilyGoal:
     """A full state: the goal values at their indices, 0 elsewhere (unused by the metric)."""
 
     def __post_init__(self) -> None:
+        from planning_core.nearest.kdtree import space_metric
         target = [0.0] * self.space.dimension
         for name, value in self.values:
             target[self.space.index(name)] = value
         object.__setattr__(self, "target", self.space.wrap(target))
+        # The planners ask these per motion: bound to the instance, native calls in
+        # the compiled build (the methods below say the same).
+        test = MetricGoalTest(space_metric(self.space), self.target, self.tolerance)
+        object.__setattr__(self, "distance", test.distance)
+        object.__setattr__(self, "reached", test.reached)
+
+    def __reduce__(self):
+        # The bound test cannot be pickled: rebuild it from the fields.
+        return (type(self), (self.space, self.values, self.tolerance))
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -50,7 +60,7 @@ class FamilyGoal:
         """The goal names every state variable: it is one state and its surroundings."""
         return len(self.values) == self.space.dimension
 
-    def distance(self, state: Sequence[float]) -> float:
+    def distance(self, state: Sequence[float]) -> float:  # (shadowed: goal.MetricGoalTest)
         return self.space.distance(state, self.target)
 
     def accepts(self, state: Sequence[float]) -> bool:
@@ -58,7 +68,8 @@ class FamilyGoal:
         return self.space.distance(state, self.target) <= self.tolerance
 
     def reached(self, state: Sequence[float]) -> bool:
-        """The planners' test, a hair inside the tolerance (as ``goal.GoalRegion``)."""
+        """The planners' test, a hair inside the tolerance (as ``goal.GoalRegion``;
+        shadowed by ``goal.MetricGoalTest``'s, the same floats)."""
         return self.space.distance(state, self.target) <= self.tolerance * (1 - PLANNER_MARGIN)
 
     def complete(self, state: Sequence[float]) -> State:

@@ -51,23 +51,17 @@ class KinoplanSpaceInformation:
         self.duration = (system.kmin, system.kmax) if system.kinodynamic else None
         self.sample_target = self._sample  # the method below, bound (the hot path)
         if system.kinodynamic:
-            # The validity test fused into the integration loop (the hot path).
-            self.advance = system.advancer(body_test(system, self.world))
-            self.propagate_valid = self._propagate_valid_by(self.advance)
+            # The validity test fused into the integration loop (the hot path; the
+            # generated class's methods, native calls in the compiled build).
+            fused = system.advancer(body_test(system, self.world))
+            self.advance = fused.advance
+            self.propagate_valid = fused.propagate_valid
             self.sample_control = system.sample_control
 
     def propagate_valid(self, state, control):
         """Where ``control`` leads from ``state`` if every slice is valid; else None.
         (Each kinodynamic instance shadows this with the fused version.)"""
         return self.system.propagate_while(state, control, self.is_valid)
-
-    @staticmethod
-    def _propagate_valid_by(advance):
-        def propagate_valid(state, control):
-            k = control[-1]
-            end, done = advance(state, control, k)
-            return end if done == k else None
-        return propagate_valid
 
     def random_motion(self, state, rng: random.Random):
         """``(end, control)``: random held values for a random K in [KMIN, KMAX]

@@ -325,15 +325,16 @@ class KinodynamicFamily(FamilySystem):
         return self._propagate(state, control, state_valid, slices_out)
 
     def advancer(self, body_free: Optional[Callable[[float, float, float], bool]] = None):
-        """``advance(state, control, kmax) -> (state, k)`` (integrators.advance_source)
-        with the state validator's test fused in: finite, the bounds, then
-        ``body_free(x, y, theta)`` when given."""
+        """The object whose ``advance(state, control, kmax) -> (state, k)`` and
+        ``propagate_valid(state, control)`` (integrators.advance_source) have the state
+        validator's test fused in: finite, the bounds, then ``body_free(x, y, theta)``
+        when given."""
         free_args = None if body_free is None else self.state_names[:3]
         advance = advance_class(advance_source(self._dynamics, self.scheme, free_args))
         variables = self.space.variables
         return advance(float(self.dt), [float(value) for _, value in self._dynamics.constants],
                        [v.low for v in variables], [v.high for v in variables],
-                       body_free).advance
+                       body_free)
 
     def reachable_controls(self, levels: int, k: int) -> list[tuple]:
         """RG-RRT's fixed reachable set: every combination of ``levels`` evenly
