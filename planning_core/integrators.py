@@ -206,7 +206,8 @@ def advance_source(dynamics: Dynamics, scheme: str,
     ``control`` (its values; a K after them is ignored) for up to ``kmax`` slices,
     stopping before the first slice whose state is not finite, is outside the
     non-angle bounds ``[lows[i], highs[i]]``, or (with ``free_args``) fails
-    ``free(*free_args)``. It returns the last state that passed (``state`` itself
+    ``free.free(*free_args)`` (``free`` a ``body_tests.BodyTest``: a native call
+    when compiled). It returns the last state that passed (``state`` itself
     when the first slice fails) and how many slices did: the same floats as
     :func:`compile_propagator`'s for those slices, the test fused into the loop
     (the family planners' hot path). Its method ``propagate_valid(state, control)``
@@ -224,7 +225,7 @@ def advance_source(dynamics: Dynamics, scheme: str,
     tests = [f"{v} - {v} == 0.0" for v in names]
     tests += [f"_lo{i} <= {names[i]} <= _hi{i}" for i in bounded]
     if free_args is not None:
-        tests.append(f"_free({', '.join(free_args)})")
+        tests.append(f"_free.free({', '.join(free_args)})")
     # The last state that passed, kept as floats (a tuple a slice cost an allocation).
     last = [f"_last{i}" for i in range(n)]
 
@@ -238,12 +239,13 @@ def advance_source(dynamics: Dynamics, scheme: str,
     lines = ["from __future__ import annotations",
              "from math import cos, pi, sin, sqrt, tan",
              "from planning_core.angles import remainder as _rem",
+             *(["from planning_core.worlds.body_tests import BodyTest"] if free_args else []),
              "from typing import Any, Sequence",
              "", "", "class Advance:",
              "    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],",
              "                 highs: Sequence[float], free: Any) -> None:",
              *[f"        self.{name}: float = {value}" for name, value in fields],
-             "        self._free = free",
+             "        self._free: BodyTest = free" if free_args else "        self._free = free",
              "",
              "    def advance(self, state: Sequence[float], control: Sequence[float],",
              "                kmax: int) -> tuple[tuple[float, ...], int]:",

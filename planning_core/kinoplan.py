@@ -17,6 +17,7 @@ from planning_core.goal import PLANNER_MARGIN, MetricGoalTest
 from planning_core.spaces import StateSpace
 from planning_core.systems.family import FamilySystem
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, OUTSIDE_BOX, ContinuousWorld
+from planning_core.worlds.body_tests import BodyTest
 from planning_core.worlds.link_tests import LinkTests
 
 State = tuple[float, ...]
@@ -154,21 +155,22 @@ def state_validator(system: FamilySystem,
         return in_bounds
     if system.occupies == "links":
         return link_tests(system, world).valid
-    free = body_test(system, world)
+    free = body_tester(system, world).free
 
     def valid(state: Sequence[float]) -> bool:
         return in_bounds(state) and free(state[0], state[1], state[2])
     return valid
 
 
-def body_test(system: FamilySystem, world: Optional[ContinuousWorld]):
-    """``free(x, y, theta)`` for a system whose body is placed at its first three
-    state variables (``world.body_test``); None when it puts no body in a world."""
+def body_tester(system: FamilySystem, world: Optional[ContinuousWorld]) -> Optional[BodyTest]:
+    """The body test (its ``free(x, y, theta)``) of a system whose body is placed at
+    its first three state variables (``world.body_tester``); None when it puts no
+    body in a world."""
     if world is None or system.occupies != "body":
         return None
     if system.body is None:
         raise ValueError(f"{system.name} has no body (a problem must give one)")
-    return world.body_test(system.body)
+    return world.body_tester(system.body)
 
 
 def link_tests(system: FamilySystem, world: Optional[ContinuousWorld]) -> Optional[LinkTests]:

@@ -1,6 +1,6 @@
 """Uniform samples on plain floats, compiled (mypyc, ``planning_core.compiled``):
 the kinoplan planners draw a target state and a control every iteration, KPIECE1 a
-motion of a cell by a normal draw.
+motion of a cell by a normal draw and, on a family system, a random motion.
 
 The draws are the references' own, in the same order: one ``rng.random()`` per
 coordinate, ``low + span * r`` (``StateSpace.sample_uniform``,
@@ -60,3 +60,22 @@ class ControlSampler:
 
     def sample(self, rng: Any) -> tuple:
         return (*self.values.sample(rng), randint(rng, self.kmin, self.kmax))
+
+
+class MotionSampler:
+    """KPIECE1's random motion on a family system (OMPL's propagateWhileValid):
+    held values from ``controls``' box and a K in ``[kmin, kmax]`` (``rng``: the
+    values, then K), applied by ``advance`` (the generated slice loop's) up to the
+    first invalid slice; ``(end, (*values, k))`` with ``k`` the slices done, or
+    None when fewer than KMIN were valid."""
+
+    def __init__(self, controls: ControlSampler, advance: Any) -> None:
+        self.controls = controls
+        self.advance = advance
+
+    def sample(self, state: Any, rng: Any) -> tuple | None:
+        controls = self.controls
+        values = controls.values.sample(rng)
+        end, k = self.advance(state, values, randint(rng, controls.kmin, controls.kmax))
+        return (end, (*values, k)) if k >= controls.kmin else None
+

@@ -21,7 +21,7 @@ from planning_core.grid_space_information import (  # noqa: F401 - the grid's, r
     grid_space_information,
 )
 from planning_core.interrupt import Stop
-from planning_core.samplers import randint
+from planning_core.samplers import MotionSampler
 
 AnySpaceInformation = Any
 """What planners annotate ``si`` with: any SpaceInformation (grid, kinoplan, geometric),
@@ -38,7 +38,7 @@ class KinoplanSpaceInformation:
     metric (an exact kd-tree)."""
 
     def __init__(self, problem):
-        from planning_core.kinoplan import body_test, state_validator
+        from planning_core.kinoplan import body_tester, state_validator
         self.problem = problem
         self.system = system = problem.system
         self.world = problem.world
@@ -53,25 +53,17 @@ class KinoplanSpaceInformation:
         if system.kinodynamic:
             # The validity test fused into the integration loop (the hot path; the
             # generated class's methods, native calls in the compiled build).
-            fused = system.advancer(body_test(system, self.world))
+            fused = system.advancer(body_tester(system, self.world))
             self.advance = fused.advance
             self.propagate_valid = fused.propagate_valid
             self.sample_control = system.sample_control
+            # KPIECE1's random motion (samplers.MotionSampler: the draws, then the slices).
+            self.random_motion = MotionSampler(system.control_sampler, fused.advance).sample
 
     def propagate_valid(self, state, control):
         """Where ``control`` leads from ``state`` if every slice is valid; else None.
         (Each kinodynamic instance shadows this with the fused version.)"""
         return self.system.propagate_while(state, control, self.is_valid)
-
-    def random_motion(self, state, rng: random.Random):
-        """``(end, control)``: random held values for a random K in [KMIN, KMAX]
-        (``rng``: the values, then K), cut at the first invalid slice, K then the
-        slices done (OMPL's propagateWhileValid); None when fewer than KMIN were valid."""
-        system = self.system
-        values = system.sample_values(rng)
-        kmin, kmax = self.duration
-        end, k = self.advance(state, values, randint(rng, kmin, kmax))
-        return (end, (*values, k)) if k >= kmin else None
 
     def advance(self, state, control, kmax: int):
         """``(state, k)``: ``control``'s held values applied for up to ``kmax``

@@ -258,7 +258,8 @@ class KinodynamicFamily(FamilySystem):
         # The two methods below, shadowed by compiled samplers making the same draws.
         values = BoxSampler([lo for lo, _ in self.controls], [hi - lo for lo, hi in self.controls])
         self._set("sample_values", values.sample)
-        self._set("sample_control", ControlSampler(values, self.kmin, self.kmax).sample)
+        self._set("control_sampler", ControlSampler(values, self.kmin, self.kmax))
+        self._set("sample_control", self.control_sampler.sample)
         dynamics = Dynamics(self.state_names, held, self.rates,
                             tuple(n in self.angle_names for n in self.state_names),
                             tuple((p, getattr(self, p)) for p in self.params))
@@ -324,17 +325,17 @@ class KinodynamicFamily(FamilySystem):
         rejects (``state`` itself is not tested). ``slices_out`` gets each slice."""
         return self._propagate(state, control, state_valid, slices_out)
 
-    def advancer(self, body_free: Optional[Callable[[float, float, float], bool]] = None):
+    def advancer(self, body: Any = None):
         """The object whose ``advance(state, control, kmax) -> (state, k)`` and
         ``propagate_valid(state, control)`` (integrators.advance_source) have the state
-        validator's test fused in: finite, the bounds, then ``body_free(x, y, theta)``
-        when given."""
-        free_args = None if body_free is None else self.state_names[:3]
+        validator's test fused in: finite, the bounds, then ``body.free(x, y, theta)``
+        when a ``body_tests.BodyTest`` is given."""
+        free_args = None if body is None else self.state_names[:3]
         advance = advance_class(advance_source(self._dynamics, self.scheme, free_args))
         variables = self.space.variables
         return advance(float(self.dt), [float(value) for _, value in self._dynamics.constants],
                        [v.low for v in variables], [v.high for v in variables],
-                       body_free)
+                       body)
 
     def reachable_controls(self, levels: int, k: int) -> list[tuple]:
         """RG-RRT's fixed reachable set: every combination of ``levels`` evenly
@@ -344,17 +345,18 @@ class KinodynamicFamily(FamilySystem):
                    for j in range(levels)] for lo, hi in self.controls]
         return [(*combination, k) for combination in itertools.product(*values)]
 
-    def cell_projection(self, cells: int) -> Callable[[Sequence[float]], tuple[int, ...]]:
-        """State -> integer cell of :attr:`projection_names`, each variable's
-        bounds cut into ``cells`` equal cells (KPIECE1's grid)."""
-        space, floor = self.space, math.floor
+    def projection_axes(self, cells: int) -> list[tuple[int, float, float]]:
+        """KPIECE1's grid: ``(index, low, scale)`` of each of :attr:`projection_names`,
+        its bounds cut into ``cells`` equal cells; a state's cell on the axis is
+        ``floor((state[index] - low) * scale)``."""
+        space = self.space
         axes = []
         for name in self.projection_names:
             v = space.variables[space.index(name)]
             if not (math.isfinite(v.low) and math.isfinite(v.high) and v.low < v.high):
                 raise ValueError(f"{self.name}: projection on {name} needs finite bounds")
             axes.append((space.index(name), v.low, cells / (v.high - v.low)))
-        return lambda state: tuple([floor((state[i] - low) * scale) for i, low, scale in axes])
+        return axes
 
     def propagate(self, state: Sequence[float], control: Sequence[float]) -> State:
         """The state after K slices (no validity test)."""

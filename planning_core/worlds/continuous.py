@@ -153,9 +153,14 @@ class ContinuousWorld:
         keeps at least the margin, far above rounding, from every obstacle). The
         clearance grows at most as fast as (x, y) moves, so it is not recomputed
         while the last one plus the distance moved since leaves no room."""
+        return self.body_tester(body).free
+
+    def body_tester(self, body: ConvexPolygon) -> BodyTest:
+        """The :class:`~planning_core.worlds.body_tests.BodyTest` behind
+        :meth:`body_test` (the family's compiled slice loop calls its ``free``)."""
         radius = max(math.hypot(px, py) for px, py in body.points)
         margin = radius + CLEARANCE_MARGIN * max(self.scale(), radius)
-        return BodyTest(self._bound, body.points, margin).free
+        return BodyTest(self._bound, body.points, margin)
 
     def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
                    lows: Sequence[float], highs: Sequence[float], margin: float) -> LinkTests:

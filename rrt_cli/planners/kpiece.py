@@ -408,13 +408,29 @@ def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
 
 
 def _make_projection(si, params: KPIECEParams):
-    """The grid's projection: a kinoplan system's own (``cell_projection``); on a
-    grid map, the position (and the velocity) in cells of ``cell_size``."""
+    """The grid's projection: on a kinoplan system, its own axes
+    (``projection_axes``); on a grid map, the position (and the velocity) in cells
+    of ``cell_size``."""
     if si.duration is not None:
-        return si.system.cell_projection(params.cells_per_axis)
+        return _AxesProjection(si.system.projection_axes(params.cells_per_axis))
     world = si.world
     cell_size = params.cell_size or derived_cell_size(world.width, world.height)
     return _GridProjection(si.system, 1.0 / cell_size, params.velocity_cell_size)
+
+
+class _AxesProjection:
+    """State -> integer cell coordinates, ``floor((state[index] - low) * scale)`` per
+    ``(index, low, scale)`` axis."""
+
+    def __init__(self, axes: list[tuple[int, float, float]]) -> None:
+        self.indices = [index for index, _, _ in axes]
+        self.lows = [low for _, low, _ in axes]
+        self.scales = [scale for _, _, scale in axes]
+
+    def __call__(self, state: Sequence[float]) -> tuple[int, ...]:
+        indices, lows, scales = self.indices, self.lows, self.scales
+        return tuple([math.floor((state[indices[k]] - lows[k]) * scales[k])
+                      for k in range(len(indices))])
 
 
 class _GridProjection:
