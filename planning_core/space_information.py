@@ -39,6 +39,7 @@ class KinoplanSpaceInformation:
 
     def __init__(self, problem):
         from planning_core.kinoplan import body_tester, state_validator
+        from planning_core.nearest.kdtree import space_metric
         self.problem = problem
         self.system = system = problem.system
         self.world = problem.world
@@ -46,7 +47,8 @@ class KinoplanSpaceInformation:
         self.goal = problem.goal
         self.space = system.space
         self.is_valid = state_validator(system, self.world)
-        self.closeness = self.space.distance
+        # The metric as the kd-tree measures (compiled: a native call, the same floats).
+        self.closeness = space_metric(self.space).distance
         self._sample = self.space.sample_uniform
         self.duration = (system.kmin, system.kmax) if system.kinodynamic else None
         self.sample_target = self._sample  # the method below, bound (the hot path)
