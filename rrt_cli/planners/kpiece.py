@@ -56,13 +56,12 @@ The design follows OMPL's ``control::KPIECE1`` (read for ideas, not copied).
 
 from __future__ import annotations
 
-import heapq
 import math
 import random
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Final, Optional
+from typing import TYPE_CHECKING, Any, Final, Optional, cast
 
 from planning_core.interrupt import Stop
 from planning_core.samplers import gauss, randint
@@ -149,11 +148,12 @@ def derived_cell_size(width: float, height: float) -> float:
 class _Cell:
     """One projection cell: its motions and the numbers its importance is made of."""
 
-    __slots__ = ("coord", "motions", "coverage", "selections", "score", "created",
+    __slots__ = ("key", "motions", "coverage", "selections", "score", "created",
                  "neighbors", "importance", "version")
 
-    def __init__(self, coord: tuple[int, ...], score: float, created: int):
-        self.coord = coord
+    def __init__(self, key: object, score: float, created: int):
+        self.key = key
+        """Its coordinates as :func:`_cell_key` packs them."""
         self.motions: list[int] = []
         self.coverage = 0
         self.selections = 1
@@ -164,8 +164,76 @@ class _Cell:
         self.version = 0
 
 
-_HeapEntry = tuple[float, int, int, _Cell]
-"""(-importance, push counter, the cell's version when pushed, the cell)"""
+class _HeapEntry:
+    """A cell in a heap as it was when pushed: ordered by ``key`` (the negated
+    importance), then by ``count`` (the push counter, unique), as the tuple
+    ``(key, count, version, cell)`` would be (an object, not a tuple: compiled, a
+    typed tuple read from a list is unpacked and re-boxed at every move)."""
+
+    __slots__ = ("key", "count", "version", "cell")
+
+    def __init__(self, key: float, count: int, version: int, cell: _Cell) -> None:
+        self.key = key
+        self.count = count
+        self.version = version
+        self.cell = cell
+
+
+def _before(a: _HeapEntry, b: _HeapEntry) -> bool:
+    return a.key < b.key or (a.key == b.key and a.count < b.count)
+
+
+def _heap_push(heap: list[_HeapEntry], entry: _HeapEntry) -> None:
+    """``heapq.heappush``, typed: the same steps, so the same heap (compiled, a
+    generic call and tuple comparisons before)."""
+    heap.append(entry)
+    _sift_down(heap, 0, len(heap) - 1)
+
+
+def _heap_pop(heap: list[_HeapEntry]) -> _HeapEntry:
+    """``heapq.heappop``, typed."""
+    last = heap.pop()
+    if not heap:
+        return last
+    top = heap[0]
+    heap[0] = last
+    _sift_up(heap, 0)
+    return top
+
+
+def _heapify(heap: list[_HeapEntry]) -> None:
+    """``heapq.heapify``, typed."""
+    for pos in range(len(heap) // 2 - 1, -1, -1):
+        _sift_up(heap, pos)
+
+
+def _sift_down(heap: list[_HeapEntry], start: int, pos: int) -> None:
+    """heapq's ``_siftdown``: the entry at ``pos`` moves up past larger parents."""
+    entry = heap[pos]
+    while pos > start:
+        parent_pos = (pos - 1) >> 1
+        parent = heap[parent_pos]
+        if not _before(entry, parent):
+            break
+        heap[pos] = parent
+        pos = parent_pos
+    heap[pos] = entry
+
+
+def _sift_up(heap: list[_HeapEntry], pos: int) -> None:
+    """heapq's ``_siftup``: the smaller child rises until a leaf, then the entry
+    from ``pos`` sifts down there."""
+    end, start, entry = len(heap), pos, heap[pos]
+    child = 2 * pos + 1
+    while child < end:
+        right = child + 1
+        if right < end and not _before(heap[child], heap[right]):
+            child = right
+        heap[pos] = heap[child]
+        pos = child
+        child = 2 * pos + 1
+    heap[pos] = entry
+    _sift_down(heap, start, pos)
 
 
 class _CellGrid:
@@ -177,14 +245,16 @@ class _CellGrid:
     """
 
     def __init__(self, dims: int):
-        self.cells: dict[tuple[int, ...], _Cell] = {}
+        self.cells: dict[object, _Cell] = {}  # by _cell_key
+        self.dims = dims
         self.full = 2 * dims  # axis neighbours of an interior cell
         self.exterior: list[_HeapEntry] = []
         self.interior: list[_HeapEntry] = []
         self.exterior_count = 0
         self._pushes = 0
         # The axis neighbours, in this order: +1 then -1 along each axis in turn.
-        self._steps = [(axis, sign) for axis in range(dims) for sign in (1, -1)]
+        self._steps: list[tuple[int, int]] = [(axis, sign) for axis in range(dims)
+                                              for sign in (1, -1)]
 
     def is_interior(self, cell: _Cell) -> bool:
         return cell.neighbors >= self.full
@@ -195,18 +265,16 @@ class _CellGrid:
         self._pushes += 1
         heap = self.interior if self.is_interior(cell) else self.exterior
         # The push counter breaks ties in creation order, so runs are reproducible.
-        heapq.heappush(heap, (-cell.importance, self._pushes, cell.version, cell))
+        _heap_push(heap, _HeapEntry(-cell.importance, self._pushes, cell.version, cell))
         if self._pushes > 8 * len(self.cells) + 64:
             self.rebuild()
 
     def add(self, cell: _Cell) -> None:
-        self.cells[cell.coord] = cell
+        self.cells[cell.key] = cell
         self.exterior_count += 1
-        coord = cell.coord
+        key = cell.key
         for axis, sign in self._steps:
-            near = list(coord)
-            near[axis] += sign
-            other = self.cells.get(tuple(near))
+            other = self.cells.get(self.neighbour_key(key, axis, sign))
             if other is None:
                 continue
             cell.neighbors += 1
@@ -219,13 +287,29 @@ class _CellGrid:
             self.exterior_count -= 1
         self.update(cell)
 
+    def neighbour_key(self, key: object, axis: int, sign: int) -> object:
+        """The key of the cell one step (``sign``, 1 or -1) along ``axis``."""
+        if isinstance(key, int):
+            shift = _KEY_BITS * axis
+            moved = ((key >> shift) & _KEY_MASK) - _KEY_OFFSET + sign
+            if -_KEY_LIMIT <= moved <= _KEY_LIMIT:
+                return key + (sign << shift)
+            coord = tuple([((key >> (_KEY_BITS * i)) & _KEY_MASK) - _KEY_OFFSET
+                           for i in range(self.dims)])
+        else:
+            coord = cast(tuple, key)
+        near = list(coord)
+        near[axis] += sign
+        return _cell_key(tuple(near))
+
     def top(self, exterior: bool) -> _Cell | None:
         heap = self.exterior if exterior else self.interior
         while heap:
-            _, _, version, cell = heap[0]
+            top = heap[0]
+            version, cell = top.version, top.cell
             if version == cell.version and self.is_interior(cell) != exterior:
                 return cell
-            heapq.heappop(heap)
+            _heap_pop(heap)
         return None
 
     def rebuild(self) -> None:
@@ -236,10 +320,33 @@ class _CellGrid:
                                             * cell.selections)
             cell.version += 1
             self._pushes += 1
-            entry = (-cell.importance, self._pushes, cell.version, cell)
+            entry = _HeapEntry(-cell.importance, self._pushes, cell.version, cell)
             (self.interior if self.is_interior(cell) else self.exterior).append(entry)
-        heapq.heapify(self.exterior)
-        heapq.heapify(self.interior)
+        _heapify(self.exterior)
+        _heapify(self.interior)
+
+
+# A cell's key packs up to four coordinates into one int, _KEY_BITS each (offset to
+# be non-negative) while every |coordinate| is at most _KEY_LIMIT (the neighbours then
+# pack too); past that it is the coordinate tuple. One key per cell either way.
+_KEY_BITS: Final = 15
+_KEY_OFFSET: Final = 1 << (_KEY_BITS - 1)
+_KEY_LIMIT: Final = _KEY_OFFSET - 2
+_KEY_MASK: Final = (1 << _KEY_BITS) - 1
+
+
+def _cell_key(coord: tuple[int, ...]) -> object:
+    """The cells' dict key of ``coord``: an int, hashed and compared at once
+    (a tuple key cost a tuple built and hashed for each of a new cell's neighbours)."""
+    if len(coord) > 4:
+        return coord
+    key = 0
+    for i in range(len(coord)):
+        c = coord[i]
+        if c < -_KEY_LIMIT or c > _KEY_LIMIT:
+            return coord
+        key |= (c + _KEY_OFFSET) << (_KEY_BITS * i)
+    return key
 
 
 class _CloseSamples:
@@ -302,12 +409,12 @@ class _Search(TreeSearch):
             return along(state[0], state[1])
         return self.goal.distance(state)
 
-    def file_node(self, node: int, coord, distance: float) -> None:
-        """Put a node in its cell (made on first use); one step of coverage."""
-        cell = self.grid.cells.get(coord)
+    def file_node(self, node: int, key: object, distance: float) -> None:
+        """Put a node in its cell (by its key, made on first use); one step of coverage."""
+        cell = self.grid.cells.get(key)
         if cell is None:
             created = self.iterations + 1  # the start's cell: 1
-            cell = _Cell(coord, (1.0 + math.log(created))
+            cell = _Cell(key, (1.0 + math.log(created))
                          / (_GOAL_DISTANCE_OFFSET + distance), created)
             cell.motions.append(node)
             cell.coverage = 1
@@ -351,22 +458,22 @@ class _Search(TreeSearch):
             steps.append(state)
         return control, steps
 
-    def interesting(self, coords) -> bool:
+    def interesting(self, keys: list[object]) -> bool:
         """The motion reaches a new cell or one with under 2/3 of the average coverage."""
         cells = self.grid.cells
         two_thirds_average = (2 * len(self.tree)) / (3 * len(cells))
-        for coord in coords:
-            cell = cells.get(coord)
+        for key in keys:
+            cell = cells.get(key)
             if cell is None or cell.coverage <= two_thirds_average:
                 return True
         return False
 
-    def add_motion(self, node: int, control, steps, coords) -> int | None:
+    def add_motion(self, node: int, control, steps, keys: list[object]) -> int | None:
         """Chain the motion's steps into the tree; the goal node, if one is reached."""
-        for new_state, coord in zip(steps, coords):
+        for new_state, key in zip(steps, keys):
             node = self.tree.add(node, new_state, control)
             distance = self.goal_distance(new_state)
-            self.file_node(node, coord, distance)
+            self.file_node(node, key, distance)
             if self.goal.reached(new_state):
                 return node
             self.close.consider(node, distance)
@@ -375,7 +482,7 @@ class _Search(TreeSearch):
     def begin(self) -> None:
         """File the start in its cell and among the close motions."""
         start_distance = self.goal_distance(self.si.start)
-        self.file_node(0, self.project(self.si.start), start_distance)
+        self.file_node(0, _cell_key(self.project(self.si.start)), start_distance)
         self.close.consider(0, start_distance)
 
     def iterate(self) -> int | None:
@@ -385,13 +492,13 @@ class _Search(TreeSearch):
         node, cell, steering = self.pick()
         control, steps = self.motion(self.tree.states[node], steering)
         if len(steps) >= (1 if steering else params.min_steps):
-            coords = [self.project(s) for s in steps]
+            keys = [_cell_key(self.project(s)) for s in steps]
             # A step steered to the goal is kept whatever the coverage: it is
             # there to close in on the goal, not to explore.
-            keep = (steering or not params.prune_uninteresting or self.interesting(coords)
+            keep = (steering or not params.prune_uninteresting or self.interesting(keys)
                     or self.rng.random() < _KEEP_UNINTERESTING)
             if keep:
-                goal_node = self.add_motion(node, control, steps, coords)
+                goal_node = self.add_motion(node, control, steps, keys)
                 if goal_node is not None:
                     return goal_node
             cell.score *= params.good_score_factor
