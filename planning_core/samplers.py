@@ -10,7 +10,23 @@ coordinate, ``low + span * r`` (``StateSpace.sample_uniform``,
 from __future__ import annotations
 
 import math
-from typing import Any
+import random
+from typing import Any, Final
+
+_GENERATOR: Final = random.Random
+_RANDOM: Final = random.Random.random
+_GETRANDBITS: Final = random.Random.getrandbits
+
+
+def uniform(rng: Any) -> float:
+    """``rng.random()``. Compiled, a method call on an untyped object looks the method
+    up at every call (about two thirds of its cost); for a ``random.Random`` itself
+    this calls the generator's C method directly: the same draw. (Any other
+    generator, a subclass too, is asked as usual.)"""
+    if type(rng) is _GENERATOR:
+        return _RANDOM(rng)
+    r: float = rng.random()
+    return r
 
 
 def randint(rng: Any, a: int, b: int) -> int:
@@ -18,9 +34,10 @@ def randint(rng: Any, a: int, b: int) -> int:
     (CPython's ``randrange`` by rejection; a test holds it to ``rng.randint``)."""
     n = b - a + 1
     k = n.bit_length()
-    r: int = rng.getrandbits(k)
+    direct = type(rng) is _GENERATOR  # as in uniform()
+    r: int = _GETRANDBITS(rng, k) if direct else rng.getrandbits(k)
     while r >= n:
-        r = rng.getrandbits(k)
+        r = _GETRANDBITS(rng, k) if direct else rng.getrandbits(k)
     return a + r
 
 
@@ -31,8 +48,8 @@ def gauss(rng: Any, mu: float, sigma: float) -> float:
     z: float | None = rng.gauss_next
     rng.gauss_next = None
     if z is None:
-        x2pi: float = rng.random() * (2.0 * math.pi)
-        g2rad = math.sqrt(-2.0 * math.log(1.0 - float(rng.random())))
+        x2pi: float = uniform(rng) * (2.0 * math.pi)
+        g2rad = math.sqrt(-2.0 * math.log(1.0 - uniform(rng)))
         z = math.cos(x2pi) * g2rad
         rng.gauss_next = math.sin(x2pi) * g2rad
     return mu + z * sigma
@@ -47,7 +64,7 @@ class BoxSampler:
 
     def sample(self, rng: Any) -> tuple[float, ...]:
         lows, spans = self.lows, self.spans
-        return tuple([lows[i] + spans[i] * rng.random() for i in range(len(lows))])
+        return tuple([lows[i] + spans[i] * uniform(rng) for i in range(len(lows))])
 
 
 class ControlSampler:

@@ -14,6 +14,8 @@ import random
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar, Final, Optional
 
+from planning_core.samplers import uniform
+
 if TYPE_CHECKING:  # for the annotation only: nothing more imported at run time
     from planning_core.worlds.grid import GridWorld
 
@@ -70,7 +72,7 @@ class Spaceship(SpaceshipVariables):
 
     def sample_control(self, rng: random.Random) -> Control:
         """Theta uniform in ``[0, theta_range)``, then thrust uniform in ``[0, s_max)``."""
-        return (rng.random() * self.theta_range, rng.random() * self.max_thrust)
+        return (uniform(rng) * self.theta_range, uniform(rng) * self.max_thrust)
 
     def control_violation(self, control: Control) -> str | None:
         """Why a printed control is out of bounds (SPEC 3), or None. (A ship with

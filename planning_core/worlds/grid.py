@@ -22,6 +22,7 @@ from typing import Any, Final, Sequence
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
+from planning_core.samplers import uniform
 
 SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
@@ -74,7 +75,7 @@ class GridWorld:
         the point prints strictly inside (x first, then y, from ``rng``)."""
         width, height = self.width, self.height
         while True:
-            x, y = rng.random() * width, rng.random() * height
+            x, y = uniform(rng) * width, uniform(rng) * height
             if x > 0.0 and y > 0.0:
                 return x, y
 

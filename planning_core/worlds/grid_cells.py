@@ -11,6 +11,7 @@ from itertools import accumulate, repeat
 from typing import Final
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
+from planning_core.samplers import uniform
 
 _BLOCK: Final = 64
 """Cells per block of :class:`FreeCells`: a lookup scans at most one block."""
@@ -76,8 +77,8 @@ def sample_free_point(rng: random.Random, free_cells: Sequence[int] | FreeCells,
     crowded maps. The point is strictly inside the map.
     """
     while True:
-        row, column = divmod(free_cells[int(rng.random() * len(free_cells))], width)
-        x, y = column + rng.random(), row + rng.random()
+        row, column = divmod(free_cells[int(uniform(rng) * len(free_cells))], width)
+        x, y = column + uniform(rng), row + uniform(rng)
         # Cell 0's lower edge is the map's edge: x == 0 or y == 0 is not printable.
         if x > 0.0 and y > 0.0:
             return (x, y)

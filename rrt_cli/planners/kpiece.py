@@ -64,7 +64,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Final, Optional, cast
 
 from planning_core.interrupt import Stop
-from planning_core.samplers import gauss, randint
+from planning_core.samplers import gauss, randint, uniform
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
@@ -428,7 +428,7 @@ class _Search(TreeSearch):
     def pick(self) -> tuple[int, _Cell, bool]:
         """The node to expand, its cell, and whether to steer it toward the goal."""
         rng, params = self.rng, self.params
-        node = self.close.select() if rng.random() < params.goal_bias else None
+        node = self.close.select() if uniform(rng) < params.goal_bias else None
         if node is not None:
             return node, self.node_cells[node], params.goal_controls > 1
         cell = _select_cell(self.grid, rng, params.border_fraction)
@@ -496,7 +496,7 @@ class _Search(TreeSearch):
             # A step steered to the goal is kept whatever the coverage: it is
             # there to close in on the goal, not to explore.
             keep = (steering or not params.prune_uninteresting or self.interesting(keys)
-                    or self.rng.random() < _KEEP_UNINTERESTING)
+                    or uniform(self.rng) < _KEEP_UNINTERESTING)
             if keep:
                 goal_node = self.add_motion(node, control, steps, keys)
                 if goal_node is not None:
@@ -581,7 +581,7 @@ def _steer_to_goal(si: AnySpaceInformation, state, goal_distance, tries: int,
 
 def _select_cell(grid: _CellGrid, rng: random.Random, border_fraction: float) -> _Cell:
     exterior_share = grid.exterior_count / len(grid.cells)
-    exterior = rng.random() < max(border_fraction, exterior_share)
+    exterior = uniform(rng) < max(border_fraction, exterior_share)
     cell = grid.top(exterior) or grid.top(not exterior)
     assert cell is not None, "a grid with cells has a top cell"
     if cell.score < _EPSILON:

@@ -63,6 +63,7 @@ from dataclasses import dataclass
 from typing import Any, Final
 
 from planning_core.interrupt import Stop
+from planning_core.samplers import uniform
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
@@ -268,10 +269,10 @@ class _Search(TreeSearch):
         """One iteration (module docstring); a goal node or None."""
         rng, params = self.rng, self.params
         self.iterations += 1
-        if self.guided and rng.random() < params.guided_share:
+        if self.guided and uniform(rng) < params.guided_share:
             chosen = self.best_first()
         else:
-            if rng.random() < params.goal_bias:
+            if uniform(rng) < params.goal_bias:
                 target = self.si.goal_target(rng)
             else:
                 target = self.si.sample_target(rng)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from planning_core.space_information import AnySpaceInformation
+from planning_core.samplers import uniform
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
@@ -83,7 +84,7 @@ def grow(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
         if limit is not None:
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
-        target = goal_target(rng) if rng.random() < goal_bias else sample_target(rng)
+        target = goal_target(rng) if uniform(rng) < goal_bias else sample_target(rng)
         near = index.nearest(target)
         step = extend(states[near], target, rng)
         if step is None:

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from planning_core.space_information import SpaceInformation
+from planning_core.samplers import uniform
 from planning_core.worlds.grid_frontier import FrontierCells
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, straight_lines
@@ -151,7 +152,7 @@ def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.
     frontier_share = params.frontier_targets
 
     def draw_target():
-        if frontier and rng.random() < frontier_share:
+        if frontier and uniform(rng) < frontier_share:
             return frontier.sample(rng)
         return draw_uniform_target()
 

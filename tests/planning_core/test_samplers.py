@@ -7,9 +7,28 @@ import random
 
 import pytest
 
-from planning_core.samplers import BoxSampler, ControlSampler, gauss, randint
+from planning_core.samplers import BoxSampler, ControlSampler, gauss, randint, uniform
 from planning_core.spaces import StateSpace, Variable
 from planning_core.systems import load
+
+
+class _Halved(random.Random):
+    """A generator of another class: uniform() and randint() must ask its own methods."""
+
+    def random(self):
+        return super().random() / 2.0
+
+    def getrandbits(self, k):
+        return super().getrandbits(k) >> 1 if k > 1 else super().getrandbits(k)
+
+
+@pytest.mark.parametrize("kind", [random.Random, _Halved])
+def test_uniform_and_randint_are_the_generators_own(kind):
+    mine, theirs = kind(11), kind(11)
+    for _ in range(500):
+        assert uniform(mine) == theirs.random()
+        assert randint(mine, 1, 100) == theirs.randint(1, 100)
+    assert mine.getstate() == theirs.getstate()
 
 
 @pytest.mark.parametrize("a, b", [(0, 0), (1, 10), (1, 16), (1, 17), (-5, 5), (3, 2 ** 40)])
