@@ -35,6 +35,7 @@ MODULES = (
     "planning_core.grid_space_information",
     "planning_core.samplers",
     "planning_core.angles",
+    "planning_core.heap",
     "planning_core.goal",
     "rrt_cli.planners.base",
     "rrt_cli.planners.tree",

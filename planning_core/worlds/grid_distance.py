@@ -20,11 +20,11 @@ so sums and comparisons stay plain floats).
 
 from __future__ import annotations
 
-import heapq
 import math
 from array import array
 from typing import Final
 
+from planning_core.heap import HeapEntry, heap_pop, heap_push
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
 
@@ -63,7 +63,7 @@ class CellDistanceToGoal:
         width, height = self.width, self.height
         distance, way = self.cell_distance, self._way
         distance[self.goal_cell] = 0.0
-        queue: list[tuple[float, int]] = [(0.0, self.goal_cell)]
+        queue: list[HeapEntry] = [HeapEntry(0.0, self.goal_cell)]  # (distance, cell)
         steps: list[tuple[int, int, float, int]] = [
             (dc, dr, cost, code) for code, (dc, dr, cost) in enumerate(_STEPS, 1)]
         countdown = POLL_EVERY
@@ -72,10 +72,13 @@ class CellDistanceToGoal:
             if not countdown:
                 countdown = POLL_EVERY
                 check(stop)
-            d, index = heapq.heappop(queue)
-            if d > distance[index]:
+            entry = heap_pop(queue)
+            d, index = entry.key, entry.order
+            best: float = distance[index]
+            if d > best:
                 continue
-            row, col = divmod(index, width)
+            row = index // width
+            col = index - row * width
             for dc, dr, cost, code in steps:
                 c, r = col + dc, row + dr
                 if not (0 <= c < width and 0 <= r < height):
@@ -85,10 +88,11 @@ class CellDistanceToGoal:
                     continue
                 if dc and dr and (blocked[row * width + c] or blocked[r * width + col]):
                     continue
-                if d + cost < distance[k]:
+                known: float = distance[k]
+                if d + cost < known:
                     distance[k] = d + cost
                     way[k] = code  # k's chain goes back through index
-                    heapq.heappush(queue, (d + cost, k))
+                    heap_push(queue, HeapEntry(d + cost, k))
 
     def __call__(self, x: float, y: float) -> float:
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
@@ -96,11 +100,11 @@ class CellDistanceToGoal:
         index = int(y) * self.width + int(x)
         if index == self.goal_cell:
             return math.hypot(x - self.goal[0], y - self.goal[1])
-        d = self.cell_distance[index]
+        d: float = self.cell_distance[index]
         if d == math.inf:
             return self.unreachable
         # Progress inside the cell toward the next one, from the cell's centre.
-        way = self._way[index]
+        way: int = self._way[index]
         return d - ((x - int(x) - 0.5) * _TOWARD_X[way] + (y - int(y) - 0.5) * _TOWARD_Y[way])
 
     def chain_from(self, x: float, y: float) -> list[tuple[int, int]] | None:

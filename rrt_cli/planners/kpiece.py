@@ -63,6 +63,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Final, Optional, cast
 
+from planning_core.heap import HeapEntry, heap_pop, heap_push, heapify
 from planning_core.interrupt import Stop
 from planning_core.samplers import gauss, randint, uniform
 from planning_core.space_information import AnySpaceInformation
@@ -164,76 +165,16 @@ class _Cell:
         self.version = 0
 
 
-class _HeapEntry:
-    """A cell in a heap as it was when pushed: ordered by ``key`` (the negated
-    importance), then by ``count`` (the push counter, unique), as the tuple
-    ``(key, count, version, cell)`` would be (an object, not a tuple: compiled, a
-    typed tuple read from a list is unpacked and re-boxed at every move)."""
+class _HeapEntry(HeapEntry):
+    """A cell in a heap as it was when pushed: by ``key``, the negated importance,
+    then ``order``, the push counter (unique, so runs are reproducible)."""
 
-    __slots__ = ("key", "count", "version", "cell")
+    __slots__ = ("version", "cell")
 
-    def __init__(self, key: float, count: int, version: int, cell: _Cell) -> None:
-        self.key = key
-        self.count = count
+    def __init__(self, key: float, order: int, version: int, cell: _Cell) -> None:
+        super().__init__(key, order)
         self.version = version
         self.cell = cell
-
-
-def _before(a: _HeapEntry, b: _HeapEntry) -> bool:
-    return a.key < b.key or (a.key == b.key and a.count < b.count)
-
-
-def _heap_push(heap: list[_HeapEntry], entry: _HeapEntry) -> None:
-    """``heapq.heappush``, typed: the same steps, so the same heap (compiled, a
-    generic call and tuple comparisons before)."""
-    heap.append(entry)
-    _sift_down(heap, 0, len(heap) - 1)
-
-
-def _heap_pop(heap: list[_HeapEntry]) -> _HeapEntry:
-    """``heapq.heappop``, typed."""
-    last = heap.pop()
-    if not heap:
-        return last
-    top = heap[0]
-    heap[0] = last
-    _sift_up(heap, 0)
-    return top
-
-
-def _heapify(heap: list[_HeapEntry]) -> None:
-    """``heapq.heapify``, typed."""
-    for pos in range(len(heap) // 2 - 1, -1, -1):
-        _sift_up(heap, pos)
-
-
-def _sift_down(heap: list[_HeapEntry], start: int, pos: int) -> None:
-    """heapq's ``_siftdown``: the entry at ``pos`` moves up past larger parents."""
-    entry = heap[pos]
-    while pos > start:
-        parent_pos = (pos - 1) >> 1
-        parent = heap[parent_pos]
-        if not _before(entry, parent):
-            break
-        heap[pos] = parent
-        pos = parent_pos
-    heap[pos] = entry
-
-
-def _sift_up(heap: list[_HeapEntry], pos: int) -> None:
-    """heapq's ``_siftup``: the smaller child rises until a leaf, then the entry
-    from ``pos`` sifts down there."""
-    end, start, entry = len(heap), pos, heap[pos]
-    child = 2 * pos + 1
-    while child < end:
-        right = child + 1
-        if right < end and not _before(heap[child], heap[right]):
-            child = right
-        heap[pos] = heap[child]
-        pos = child
-        child = 2 * pos + 1
-    heap[pos] = entry
-    _sift_down(heap, start, pos)
 
 
 class _CellGrid:
@@ -248,8 +189,8 @@ class _CellGrid:
         self.cells: dict[object, _Cell] = {}  # by _cell_key
         self.dims = dims
         self.full = 2 * dims  # axis neighbours of an interior cell
-        self.exterior: list[_HeapEntry] = []
-        self.interior: list[_HeapEntry] = []
+        self.exterior: list[HeapEntry] = []  # of _HeapEntry
+        self.interior: list[HeapEntry] = []
         self.exterior_count = 0
         self._pushes = 0
         # The axis neighbours, in this order: +1 then -1 along each axis in turn.
@@ -265,7 +206,7 @@ class _CellGrid:
         self._pushes += 1
         heap = self.interior if self.is_interior(cell) else self.exterior
         # The push counter breaks ties in creation order, so runs are reproducible.
-        _heap_push(heap, _HeapEntry(-cell.importance, self._pushes, cell.version, cell))
+        heap_push(heap, _HeapEntry(-cell.importance, self._pushes, cell.version, cell))
         if self._pushes > 8 * len(self.cells) + 64:
             self.rebuild()
 
@@ -305,11 +246,11 @@ class _CellGrid:
     def top(self, exterior: bool) -> _Cell | None:
         heap = self.exterior if exterior else self.interior
         while heap:
-            top = heap[0]
+            top = cast(_HeapEntry, heap[0])
             version, cell = top.version, top.cell
             if version == cell.version and self.is_interior(cell) != exterior:
                 return cell
-            _heap_pop(heap)
+            heap_pop(heap)
         return None
 
     def rebuild(self) -> None:
@@ -322,8 +263,8 @@ class _CellGrid:
             self._pushes += 1
             entry = _HeapEntry(-cell.importance, self._pushes, cell.version, cell)
             (self.interior if self.is_interior(cell) else self.exterior).append(entry)
-        _heapify(self.exterior)
-        _heapify(self.interior)
+        heapify(self.exterior)
+        heapify(self.interior)
 
 
 # A cell's key packs up to four coordinates into one int, _KEY_BITS each (offset to

@@ -6,9 +6,6 @@ test_ship_planner_contract.py.
 
 from __future__ import annotations
 
-import heapq
-import random
-
 import pytest
 
 from planning_core.vehicles import Vehicle
@@ -77,33 +74,6 @@ def test_cell_grid_tells_interior_from_exterior():
     cells[3].score = 10.0
     grid.update(cells[3])
     assert grid.top(exterior=True) is cells[3]
-
-
-def test_the_cell_heaps_are_heapqs():
-    """The cells' heap makes heapq's heap of the entries as tuples: the same lists after
-    every push, pop and heapify, importances often equal (the push counter decides)."""
-    rng = random.Random(3)
-    cell = kpiece._Cell((0, 0), score=1.0, created=1)
-    ours: list = []
-    theirs: list = []
-    def as_tuples(heap):
-        return [(e.key, e.count, e.version, e.cell) for e in heap]
-
-    for push in range(3000):
-        if ours and rng.random() < 0.4:
-            popped = kpiece._heap_pop(ours)
-            assert (popped.key, popped.count, popped.version, popped.cell) == heapq.heappop(theirs)
-        else:
-            entry = (-float(rng.choice([0.5, 1.0, 2.0, rng.random()])), push, 0, cell)
-            kpiece._heap_push(ours, kpiece._HeapEntry(*entry))
-            heapq.heappush(theirs, entry)
-        assert as_tuples(ours) == theirs
-    order = list(range(len(ours)))
-    rng.shuffle(order)
-    shuffled, again = [ours[i] for i in order], [theirs[i] for i in order]
-    kpiece._heapify(shuffled)
-    heapq.heapify(again)
-    assert as_tuples(shuffled) == again
 
 
 def test_cell_keys_are_one_per_cell_and_neighbours_match():
