@@ -137,12 +137,16 @@ class KDTree:
     def _split(self, node: _Node) -> None:
         """Split an overfull leaf at the median of its widest weighted axis."""
         lo, hi, weights = node.lo, node.hi, self._weights
-        axis = max(self._axes, key=lambda i: (hi[i] - lo[i]) * weights[i], default=-1)
+        axis, widest = -1, 0.0  # the first of the widest, as max() picks
+        for i in self._axes:
+            width = (hi[i] - lo[i]) * weights[i]
+            if axis < 0 or width > widest:
+                axis, widest = i, width
         bucket = node.bucket
         if axis < 0 or hi[axis] <= lo[axis] or bucket is None:
             return  # all points coincide on the metric axes: the leaf just grows
         keys = self._keys
-        values = sorted(keys[i][axis] for i in bucket)
+        values = sorted([keys[i][axis] for i in bucket])
         split = values[len(values) // 2]
         if split == values[0]:  # keep the left side non-empty: the next larger value
             split = values[bisect.bisect_right(values, split)]
@@ -369,7 +373,7 @@ def _checked(state: Sequence[float], dimension: int) -> State:
     if len(point) != dimension:
         raise ValueError(f"a state of {len(point)} values in a {dimension}-D space")
     for v in point:
-        if not math.isfinite(v):
+        if math.isinf(v) or math.isnan(v):  # (isfinite is a generic call compiled)
             raise ValueError(f"a state with a non-finite value: {point!r}")
     return point
 
