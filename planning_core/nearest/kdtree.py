@@ -181,36 +181,45 @@ class KDTree:
     def nearest(self, query: Sequence[float]) -> int:
         """Index of the nearest point; ties go to the earliest inserted.
 
-        :meth:`k_nearest` for k = 1 (the same visits and pruning) with the best
-        kept in two locals instead of a heap: a planner asks this every iteration."""
-        if self._root is None:
+        :meth:`k_nearest` for k = 1 (the same visits and pruning), by recursion with
+        the best so far passed down and returned: a planner asks this every
+        iteration, and compiled, a stack of nodes and bounds cost as much as the
+        distances."""
+        root = self._root
+        if root is None:
             raise ValueError("nearest() on an empty structure")
         q, key, slack = self._prepare(query)
+        if root.bucket is None:
+            return self._nearest_below(root, q, key, slack, math.inf, -1)[1]
+        return self._nearest_in_leaf(root, q, math.inf, -1)[1]
+
+    def _nearest_below(self, node: _Node, q: State, key: State, slack: float,
+                       best: float, best_i: int) -> tuple[float, int]:
+        """The best of ``(best, best_i)`` and an inner node's points: the child on the
+        query's side first (a leaf there only when its box may hold a better point),
+        then the other when its box's bound is at most the best by then."""
+        near, far = _children(node, key)
+        far_bound = self._metric.bound(key, far.lo, far.hi, slack)
+        if near.bucket is None:
+            best, best_i = self._nearest_below(near, q, key, slack, best, best_i)
+        elif not self._metric.bound(key, near.lo, near.hi, slack) > best:
+            best, best_i = self._nearest_in_leaf(near, q, best, best_i)
+        if far_bound > best:
+            return best, best_i
+        if far.bucket is None:
+            return self._nearest_below(far, q, key, slack, best, best_i)
+        return self._nearest_in_leaf(far, q, best, best_i)
+
+    def _nearest_in_leaf(self, leaf: _Node, q: State, best: float,
+                         best_i: int) -> tuple[float, int]:
         metric, points = self._metric, self._points
-        best, best_i = math.inf, -1
-        # The stack: nodes to visit, each with its bound (-1.0: not computed yet).
-        nodes, bounds = [self._root], [-1.0]
-        while nodes:
-            node, b = nodes.pop(), bounds.pop()
-            if b > best:
-                continue
-            bucket = node.bucket
-            if bucket is not None:
-                if b < 0.0 and metric.bound(key, node.lo, node.hi, slack) > best:
-                    continue
-                for i in bucket:
-                    d = metric.distance(q, points[i])
-                    if d < best or (d == best and i < best_i):
-                        best, best_i = d, i
-                continue
-            near, far = _children(node, key)
-            b = metric.bound(key, far.lo, far.hi, slack)
-            if b <= best:
-                nodes.append(far)
-                bounds.append(b)
-            nodes.append(near)
-            bounds.append(-1.0)
-        return best_i
+        bucket = leaf.bucket
+        assert bucket is not None
+        for i in bucket:
+            d = metric.distance(q, points[i])
+            if d < best or (d == best and i < best_i):
+                best, best_i = d, i
+        return best, best_i
 
     def k_nearest(self, query: Sequence[float], k: int) -> list[int]:
         """Indices of the ``k`` nearest points, nearest first (ties: smaller index
