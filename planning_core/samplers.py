@@ -76,7 +76,9 @@ class ControlSampler:
         self.kmax = kmax
 
     def sample(self, rng: Any) -> tuple:
-        return (*self.values.sample(rng), randint(rng, self.kmin, self.kmax))
+        # (Concatenated: compiled, a star-unpacked tuple display goes through a list.)
+        values = self.values.sample(rng)
+        return values + (randint(rng, self.kmin, self.kmax),)
 
 
 class MotionSampler:
@@ -94,5 +96,5 @@ class MotionSampler:
         controls = self.controls
         values = controls.values.sample(rng)
         end, k = self.advance(state, values, randint(rng, controls.kmin, controls.kmax))
-        return (end, (*values, k)) if k >= controls.kmin else None
+        return (end, values + (k,)) if k >= controls.kmin else None
 
