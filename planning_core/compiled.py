@@ -36,6 +36,7 @@ MODULES = (
     "planning_core.samplers",
     "planning_core.angles",
     "planning_core.heap",
+    "planning_core.nearest.index",
     "planning_core.goal",
     "rrt_cli.planners.base",
     "rrt_cli.planners.tree",

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any, Optional, Sequence
 
 from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
+from planning_core.nearest.index import NearestIndex
 from planning_core.problem import Problem
 from planning_core.systems import load as load_system
 from planning_core.worlds.grid import GridWorld, SegmentHit
@@ -102,7 +103,7 @@ class SpaceInformation:
         return self.world.distance_along_cells(stop)
 
 
-class PositionNearest:
+class PositionNearest(NearestIndex):
     """The grid's nearest-node index: a quadtree over states' (x, y)."""
 
     def __init__(self, width: float, height: float):

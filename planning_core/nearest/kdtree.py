@@ -30,6 +30,7 @@ from typing import Final, cast
 
 from planning_core import compiled
 from planning_core.angles import remainder
+from planning_core.nearest.index import NearestIndex
 from planning_core.spaces import (
     TAU as _SPACES_TAU,
     StateSpace,
@@ -48,7 +49,7 @@ COMPILED = not __file__.endswith(".py")
 """True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
 
 
-class KDTree:
+class KDTree(NearestIndex):
     """A bucketed kd-tree with incremental inserts.
 
     A leaf holds up to ``leaf_capacity`` point indices; past that it splits at

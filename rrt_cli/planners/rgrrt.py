@@ -63,6 +63,7 @@ from dataclasses import dataclass
 from typing import Any, Final
 
 from planning_core.interrupt import Stop
+from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
 from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
@@ -126,7 +127,7 @@ class _ReachableSets:
     """Every node's reachable states, indexed like the quadtree of their positions."""
 
     def __init__(self, si: Any) -> None:
-        self.index = si.new_nearest()
+        self.index: NearestIndex = si.new_nearest()  # typed: native calls
         self.closeness = si.closeness
         self.states: list[tuple[float, ...]] = []
         self.owner: list[int] = []

@@ -19,8 +19,9 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
-from planning_core.space_information import AnySpaceInformation
+from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
+from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
@@ -66,7 +67,7 @@ def grow(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
     this loop with its own steering)."""
     goal = si.goal
     tree = MotionTree(si.start)
-    index = si.new_nearest()
+    index: NearestIndex = si.new_nearest()  # typed: native calls (nearest/index.py)
     index.add(si.start)
     system = si.system
 

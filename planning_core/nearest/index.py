@@ -1,0 +1,24 @@
+"""What the tree planners ask of a nearest-neighbour structure, as one base class.
+
+RRT and RG-RRT hold whichever structure their SpaceInformation makes (the grid's
+quadtree by position, the kd-tree by a metric). Compiled (mypyc), a method call on
+an untyped object goes through the method's Python wrapper, its arguments checked
+and converted each time; typed as this base class, the call is native, to the
+subclass's own method.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class NearestIndex:
+    """Insert states, ask for the one nearest a query; both by insertion index."""
+
+    def add(self, state: Any) -> int:
+        """Insert a state; returns its index (insertion order)."""
+        raise NotImplementedError
+
+    def nearest(self, query: Any) -> int:
+        """Index of the nearest inserted state (ties: the earliest)."""
+        raise NotImplementedError
