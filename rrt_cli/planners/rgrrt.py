@@ -57,11 +57,11 @@ kinoplan: a kd-tree by the metric); each point's index maps to its node and cont
 
 from __future__ import annotations
 
-import heapq
 import random
 from dataclasses import dataclass
 from typing import Any, Final
 
+from planning_core.heap import HeapEntry, heap_pop, heap_push
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
@@ -175,7 +175,7 @@ class _Search(TreeSearch):
         self.guided = along is not None
         # Every reachable state by its distance to the goal; used ones are skipped
         # when they come to the top.
-        self.by_distance: list[tuple[float, int]] = []
+        self.by_distance: list[HeapEntry] = []  # (distance, reachable state)
         if self.guided:
             self.guide_key = (stopping_point_key(along, si) if params.guide_by_stopping_point
                               else lambda state: along(state[0], state[1]))
@@ -222,7 +222,7 @@ class _Search(TreeSearch):
         ends.append(end)
         chosen = self.reach.add(node, end, control)
         if self.guided:
-            heapq.heappush(self.by_distance, (self.guide_key(end), chosen))
+            heap_push(self.by_distance, HeapEntry(self.guide_key(end), chosen))
         return None
 
     def take(self, chosen: int) -> int | None:
@@ -236,7 +236,7 @@ class _Search(TreeSearch):
     def best_first(self) -> int:
         """The unused reachable state nearest the goal by the guide, or -1."""
         while self.by_distance:
-            _, candidate = heapq.heappop(self.by_distance)
+            candidate = heap_pop(self.by_distance).order
             if not self.reach.used[candidate]:
                 return candidate
         return -1
