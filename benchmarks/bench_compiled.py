@@ -2,21 +2,22 @@
 and both against OMPL with Python callbacks, measured in one run.
 
     python -m benchmarks.bench_compiled [--seeds 3] [--repeats 1] [--time 30]
-                                        [--vehicles point spaceship left] [--problems PATTERN ...]
-                                        [--no-ompl]
+                                        [--vehicles point spaceship left arm2 rigid2]
+                                        [--problems PATTERN ...] [--no-ompl]
     python -m benchmarks.bench_compiled --kernels 5
 
 Problems: the quick preset's course problems and maps of 50x50 and up for the
-point vehicle, and its problems for the two ships. Each case runs as whole processes in turn (./run.sh
-compiled, ./run.sh with RRT_INTERPRETED=1, OMPL's planner), the order
+point vehicle, and its problems for the two ships; the family's arm2 and rigid2
+problems (``benchmarks/problems/family``) for those two "vehicles" (the geometric
+family, issue 19's point targets). Each case runs as whole processes in turn
+(./run.sh compiled, ./run.sh with RRT_INTERPRETED=1, OMPL's planner), the order
 alternating, and reads each run's own planning time from its -stats line. The
-OMPL reference is geometric RRT for the point vehicle and control RRT for the
-ships (issue 19's acceptance ratios); with g++ and Debian's libompl-dev, the same
-set-up in C++ too (``benchmarks/ompl_cpp/grid_ompl.cpp``, built on first use into
-``.build/``). Prints a Markdown table of medians over seeds and repeats; an
-unsolved run counts its whole time limit (noted).
-``--kernels`` times the two hot loops alone, in-process, per mode.
-"""
+OMPL reference is geometric RRT for the point vehicle, the arm and the rigid body,
+control RRT for the ships (issue 19's acceptance ratios); with g++ and Debian's
+libompl-dev, the same set-up in C++ too (``benchmarks/ompl_cpp/``, built on first
+use into ``.build/``: benchmarks/ompl_cpp_programs.py). Prints a Markdown table of
+medians over seeds and repeats; an unsolved run counts its whole time limit (noted).
+``--kernels`` times the two hot loops alone, in-process, per mode."""
 
 from __future__ import annotations
 
@@ -24,28 +25,31 @@ import argparse
 import fnmatch
 import os
 import re
-import shutil
 import statistics
 import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from benchmarks.family import FAMILY_DIR
 from benchmarks.generator import problem_id
+from benchmarks.ompl_cpp_programs import binary, family_input, grid_input
 from benchmarks.presets import PRESETS, select_problems
 from planning_core.problem_text import parse_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 OUR_PLANNERS = {"point": ("rrt", "rrtconnect"), "spaceship": ("rrt", "kpiece", "rgrrt"),
-                "left": ("rrt", "kpiece", "rgrrt")}
+                "left": ("rrt", "kpiece", "rgrrt"), "arm2": ("rrt", "rrtconnect"),
+                "rigid2": ("rrt", "rrtconnect")}
 VEHICLE_FLAGS = {"point": [], "spaceship": ["-grad"], "left": ["-grad", "-left"]}
+FAMILY = ("arm2", "rigid2")
+"""The geometric family's systems, benchmarked as vehicles of their own."""
 STATS = re.compile(r"stats: status=(\w+) .*planning_seconds=([0-9.]+)")
 MODES = ("compiled", "interpreted")
-OMPL_CPP_SOURCE = ROOT / "benchmarks" / "ompl_cpp" / "grid_ompl.cpp"
-OMPL_CPP_BINARY = ROOT / ".build" / "grid_ompl"
 POINT_TARGET_SIZE = 50
 """Issue 19's point targets apply to maps of this width and height and up."""
 OMPL_CPP_MODE = {"point": "point", "spaceship": "ship", "left": "left"}
+"""grid_ompl's mode per vehicle; family_ompl runs geometric RRT on arm2 and rigid2."""
 
 
 @dataclass(frozen=True)
@@ -57,7 +61,12 @@ class Run:
 
 def problems_for(vehicle: str, patterns: list[str]) -> list[Path]:
     """The quick preset's problems for ``vehicle`` (point: its course problems and
-    its maps of 50x50 and up, where issue 19 sets the point targets)."""
+    its maps of 50x50 and up, where issue 19 sets the point targets; arm2 and rigid2:
+    the family's problems of that system)."""
+    if vehicle in FAMILY:
+        chosen = sorted(FAMILY_DIR.glob(f"{vehicle}-*.kp"))
+        return [path for path in chosen if not patterns
+                or any(fnmatch.fnmatchcase(problem_id(path), p) for p in patterns)]
     plan = next(plan for plan in PRESETS["quick"].plans if plan.vehicle.value == vehicle)
     chosen = select_problems(plan)
     if vehicle == "point":
@@ -72,44 +81,21 @@ def _map_size(problem: Path) -> tuple[int, int]:
     return parsed.width, parsed.height
 
 
-def ompl_cpp_binary() -> Path | None:
-    """The C++ OMPL program, compiled when missing or older than its source; None
-    without g++ or OMPL's headers (``apt-get install libompl-dev``)."""
-    if OMPL_CPP_BINARY.exists() and OMPL_CPP_BINARY.stat().st_mtime >= \
-            OMPL_CPP_SOURCE.stat().st_mtime:
-        return OMPL_CPP_BINARY
-    flags = subprocess.run(["pkg-config", "--cflags", "ompl"], capture_output=True, text=True)
-    if flags.returncode != 0 or shutil.which("g++") is None:
-        return None
-    OMPL_CPP_BINARY.parent.mkdir(exist_ok=True)
-    built = subprocess.run(["g++", "-O2", "-ffp-contract=off", *flags.stdout.split(),
-                            "-std=c++17", str(OMPL_CPP_SOURCE), "-o", str(OMPL_CPP_BINARY),
-                            "-lompl", "-lpthread"], capture_output=True, text=True)
-    if built.returncode != 0:
-        print(f"bench_compiled: C++ OMPL not built: {built.stderr.strip()[-300:]}",
-              file=sys.stderr)
-        return None
-    return OMPL_CPP_BINARY
-
-
-def flat_problem(problem: Path) -> bytes:
-    """The C++ program's input: W H, the cells as 0/1 (bottom row first), start, goal."""
-    parsed = parse_problem(problem.read_text())
-    cells = "".join("1" if cell else "0" for cell in parsed.blocked)
-    return (f"{parsed.width} {parsed.height}\n{cells}\n"
-            f"{parsed.start[0]!r} {parsed.start[1]!r} {parsed.goal[0]!r} {parsed.goal[1]!r}\n"
-            ).encode()
+def cpp_program(vehicle: str) -> Path | None:
+    """The C++ OMPL program for ``vehicle``'s problems, or None when it cannot be built."""
+    return binary("family_ompl" if vehicle in FAMILY else "grid_ompl")
 
 
 def command(mode: str, vehicle: str, planner: str, seed: int, limit: float) -> tuple[list, dict]:
     """argv and environment of one run: ours in ``mode``, or OMPL (mode "ompl" with
     Python callbacks, "ompl-cpp" in C++)."""
-    args = [*VEHICLE_FLAGS[vehicle], "-planner", planner, "-seed", str(seed),
+    args = [*VEHICLE_FLAGS.get(vehicle, []), "-planner", planner, "-seed", str(seed),
             "-time", str(limit), "-stats"]
     env = dict(os.environ)
     env.pop("RRT_INTERPRETED", None)
     if mode == "ompl-cpp":
-        return [str(OMPL_CPP_BINARY), OMPL_CPP_MODE[vehicle], str(limit), str(seed)], env
+        program = cpp_program(vehicle)
+        return [str(program), OMPL_CPP_MODE.get(vehicle, "rrt"), str(limit), str(seed)], env
     if mode == "ompl":
         return [sys.executable, str(ROOT / "benchmarks" / "ompl_planner.py"), *args], env
     if mode == "interpreted":
@@ -118,7 +104,11 @@ def command(mode: str, vehicle: str, planner: str, seed: int, limit: float) -> t
 
 
 def run_once(argv: list, env: dict, problem: Path, limit: float, mode: str) -> Run:
-    stdin = flat_problem(problem) if mode == "ompl-cpp" else problem.read_bytes()
+    if mode == "ompl-cpp":
+        flat = family_input if problem.suffix == ".kp" else grid_input
+        stdin = flat(problem.read_text())
+    else:
+        stdin = problem.read_bytes()
     done = subprocess.run(argv, input=stdin, capture_output=True, env=env,
                           timeout=limit * 3 + 30)
     done.stderr = done.stderr.decode(errors="replace")
@@ -143,7 +133,7 @@ def measure_case(vehicle: str, problem: Path, args) -> dict[tuple[str, str], lis
                     for mode in (MODES if turn % 2 == 0 else MODES[::-1])]
             if not args.no_ompl:
                 jobs.insert(turn % (len(jobs) + 1), ("ompl", "ompl"))
-                if args.ompl_cpp:
+                if args.ompl_cpp[vehicle]:
                     jobs.insert((turn + 1) % (len(jobs) + 1), ("ompl-cpp", "ompl-cpp"))
             turn += 1
             for planner, mode in jobs:
@@ -261,10 +251,11 @@ def main(argv: list[str] | None = None) -> int:
         kernels(args.kernels)
         return 0
     args.planners = OUR_PLANNERS
-    args.ompl_cpp = not args.no_ompl and ompl_cpp_binary() is not None
+    args.ompl_cpp = {vehicle: not args.no_ompl and cpp_program(vehicle) is not None
+                     for vehicle in args.vehicles}
     print(f"# planning time (ms, medians of {args.seeds} seeds x {args.repeats}), "
           f"compiled vs interpreted vs OMPL RRT (Python callbacks; C++ callbacks: "
-          f"{'yes' if args.ompl_cpp else 'not built'}), limit {args.time:g} s")
+          f"{'yes' if all(args.ompl_cpp.values()) else 'not built'}), limit {args.time:g} s")
     print("| vehicle | problem | planner | compiled | interpreted | interp / comp "
           "| OMPL RRT | comp / OMPL | interp / OMPL | OMPL C++ | comp / C++ |")
     print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")

@@ -8,6 +8,7 @@ from pathlib import Path
 from benchmarks import bench_compiled
 from benchmarks.bench_compiled import Run
 from benchmarks.generator import problem_id
+from benchmarks.ompl_cpp_programs import grid_input
 
 
 def test_point_runs_on_the_course_problems_and_big_maps_the_ships_on_their_quick_problems():
@@ -45,7 +46,7 @@ def test_table_row_ratios_and_unsolved_runs():
 
 def test_the_cpp_program_reads_the_problem_flat():
     problem = Path(__file__).resolve().parent.parent / "benchmarks/problems/course/space-1.sw"
-    lines = bench_compiled.flat_problem(problem).decode().splitlines()
+    lines = grid_input(problem.read_text()).decode().splitlines()
     assert lines[0] == "10 9" and len(lines[1]) == 90 and set(lines[1]) == {"0", "1"}
     assert lines[1][:10] == "0001100000"  # the bottom row ("___##_____") first
     assert lines[2] == "0.1 0.1 4.0 1.0"

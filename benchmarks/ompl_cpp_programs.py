@@ -1,0 +1,91 @@
+"""The C++ OMPL programs of ``benchmarks/ompl_cpp/`` (OMPL with C++ callbacks, issue
+19's practical limit): built on first use into ``.build/`` with g++ and Debian's
+``libompl-dev`` (``apt-get install libompl-dev``), and the flat text each reads on stdin.
+
+* ``grid_ompl``: a ``.sw`` problem (:func:`grid_input`), point, ship and left modes;
+* ``family_ompl``: a geometric ``kinoplan`` problem, arm2 or rigid2 (:func:`family_input`).
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SOURCES = ROOT / "benchmarks" / "ompl_cpp"
+BUILD = ROOT / ".build"
+FLAGS = ("-O2", "-ffp-contract=off", "-std=c++17")
+"""As the compiled modules: no -march=native, no fused multiply-adds."""
+
+
+def binary(name: str) -> Path | None:
+    """``.build/NAME`` from ``benchmarks/ompl_cpp/NAME.cpp``, compiled when missing or
+    older than its source; None (one line on stderr when the build fails) without g++
+    or OMPL's headers."""
+    source, target = SOURCES / f"{name}.cpp", BUILD / name
+    if target.exists() and target.stat().st_mtime >= source.stat().st_mtime:
+        return target
+    flags = subprocess.run(["pkg-config", "--cflags", "ompl"], capture_output=True, text=True)
+    if flags.returncode != 0 or shutil.which("g++") is None:
+        return None
+    BUILD.mkdir(exist_ok=True)
+    built = subprocess.run(["g++", *FLAGS, *flags.stdout.split(), str(source), "-o",
+                            str(target), "-lompl", "-lpthread"], capture_output=True, text=True)
+    if built.returncode != 0:
+        print(f"ompl_cpp_programs: {name} not built: {built.stderr.strip()[-300:]}",
+              file=sys.stderr)
+        return None
+    return target
+
+
+def grid_input(problem_text: str) -> bytes:
+    """``grid_ompl``'s input: W H, the cells as 0/1 (bottom row first), start, goal."""
+    from planning_core.problem_text import parse_problem
+    parsed = parse_problem(problem_text)
+    cells = "".join("1" if cell else "0" for cell in parsed.blocked)
+    return (f"{parsed.width} {parsed.height}\n{cells}\n"
+            f"{parsed.start[0]!r} {parsed.start[1]!r} {parsed.goal[0]!r} {parsed.goal[1]!r}\n"
+            ).encode()
+
+
+def family_input(problem_text: str) -> bytes:
+    """``family_ompl``'s input: keyword-led lines of numbers (floats by ``repr``, so
+    exact): the variables (angle flag, low, high), the metric groups (weight, count,
+    indices), the check step, the arm's params or the body's vertices, the world box,
+    the obstacles (R x0 y0 x1 y1 | C cx cy r | P n x y ...), the start, the goal
+    (tolerance, count, index value ...). ValueError for a kinodynamic system."""
+    from planning_core.kinoplan_text import parse_kinoplan
+    from planning_core.worlds.shapes import Disc, Rect
+    problem = parse_kinoplan(problem_text)
+    system, world, space = problem.system, problem.world, problem.system.space
+    if system.name not in ("arm2", "rigid2"):
+        raise ValueError(f"family_ompl plans arm2 and rigid2 problems, not {system.name}")
+    numbers = lambda values: " ".join(repr(float(v)) for v in values)  # noqa: E731
+    lines = [f"system {system.name}", f"vars {space.dimension}"]
+    lines += [f"{int(v.angle)} {numbers((v.low, v.high))}" for v in space.variables]
+    lines.append(f"groups {len(space.groups)}")
+    lines += [f"{weight!r} {len(indices)} {' '.join(map(str, indices))}"
+              for indices, weight in space.groups]
+    lines.append(f"check {system.check!r}")
+    if system.name == "arm2":
+        lines.append(f"arm {numbers((system.base_x, system.base_y, system.l1, system.l2))}")
+    else:
+        lines.append(f"body {len(system.body.points)} "
+                     f"{numbers(c for point in system.body.points for c in point)}")
+    box = world.box
+    lines.append("box 0" if box is None else f"box 1 {numbers((box.x0, box.y0, box.x1, box.y1))}")
+    lines.append(f"obstacles {len(world.obstacles)}")
+    for o in world.obstacles:
+        if isinstance(o, Rect):
+            lines.append(f"R {numbers((o.x0, o.y0, o.x1, o.y1))}")
+        elif isinstance(o, Disc):
+            lines.append(f"C {numbers((o.cx, o.cy, o.r))}")
+        else:
+            lines.append(f"P {len(o.points)} {numbers(c for point in o.points for c in point)}")
+    lines.append(f"start {numbers(problem.start)}")
+    goal = problem.goal
+    lines.append(f"goal {goal.tolerance!r} {len(goal.values)} " + " ".join(
+        f"{space.index(name)} {value!r}" for name, value in goal.values))
+    return ("\n".join(lines) + "\n").encode()
