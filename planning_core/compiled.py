@@ -32,6 +32,7 @@ MODULES = (
     "planning_core.worlds.segment_tests",
     "planning_core.worlds.body_tests",
     "planning_core.worlds.link_tests",
+    "planning_core.worlds.body_motion",
     "planning_core.grid_space_information",
     "planning_core.samplers",
     "planning_core.angles",

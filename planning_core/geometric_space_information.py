@@ -17,9 +17,10 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Sequence
 
 from planning_core.interrupt import Stop
-from planning_core.kinoplan import link_tests
+from planning_core.kinoplan import body_tester, link_tests
 from planning_core.nearest.kdtree import space_metric
 from planning_core.space_information import KinoplanSpaceInformation
+from planning_core.worlds.body_motion import BodyMotionCheck
 from planning_core.worlds.link_tests import MotionCheck, sample_count
 
 State = tuple[float, ...]
@@ -61,17 +62,23 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
         self.check = system.check
         self.dimension = self.space.dimension
         self.can_end_at = self.is_valid
-        links = link_tests(system, problem.world)
+        links, body = link_tests(system, problem.world), body_tester(system, problem.world)
+        variables = self.space.variables
         if links is not None:  # the arm: its first_hit in one native call
             metric = space_metric(self.space)
             self.first_hit = MotionCheck(links, metric, self.check, MotionHit).first_hit
+        elif body is not None and [v.angle for v in variables] == [False, False, True]:
+            # a body at (x, y, theta): the same, by BodyMotionCheck
+            self.first_hit = BodyMotionCheck(
+                body, [v.low for v in variables[:2]], [v.high for v in variables[:2]],
+                space_metric(self.space), self.check, MotionHit).first_hit
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[MotionHit]:
         """The first invalid sample of the motion a -> b (``a`` itself not tested),
         at SPEC 5.2's ``n = max(1, ceil(d / check))``; None when every one is valid.
         The arm shadows this with ``link_tests.MotionCheck.first_hit``, which skips
-        samples that a valid one's clearance proves valid: the same answer as
-        testing each."""
+        samples that a valid one's clearance proves valid, and the rigid body with
+        ``body_motion.BodyMotionCheck.first_hit``: the same answer as testing each."""
         n = self.samples_between(a, b)
         valid, interpolate = self.is_valid, self.interpolate
         for i in range(1, n + 1):
