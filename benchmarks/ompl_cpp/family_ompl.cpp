@@ -14,7 +14,7 @@
 // Usage: family_ompl rrt|rrtconnect TIME_LIMIT SEED
 // Prints the path on stdout in SPEC 5.4's geometric format (no tree), so the validator can
 // check it, and one line on stderr: "ompl_cpp stats: status=solved|unsolved
-// planning_seconds=S tree_nodes=N" (S: OMPL's set-up and solve).
+// planning_seconds=S tree_nodes=N motion_checks=M" (S: OMPL's set-up and solve).
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -433,8 +433,10 @@ static bool solve(Family &f, const std::string &planner, double limit,
     if (solved) printPath(f, setup.getSolutionPath());
     ob::PlannerData data(info);
     setup.getPlannerData(data);
-    std::fprintf(stderr, "ompl_cpp stats: status=%s planning_seconds=%.6f tree_nodes=%u\n",
-                 solved ? "solved" : "unsolved", seconds, data.numVertices());
+    const auto motions = info->getMotionValidator();
+    std::fprintf(stderr, "ompl_cpp stats: status=%s planning_seconds=%.6f tree_nodes=%u "
+                 "motion_checks=%u\n", solved ? "solved" : "unsolved", seconds,
+                 data.numVertices(), motions->getValidMotionCount() + motions->getInvalidMotionCount());
     return solved;
 }
 

@@ -104,8 +104,9 @@ def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
         return 0.0
     best = math.inf
     ax, ay = points[-1]
-    for bx, by in points:
-        best = min(best, segment_distance(ax, ay, bx, by, x, y))
+    for bx, by in points:  # min() over the edges' distances, the hypot only where it may win
+        px, py = segment_offset(ax, ay, bx, by, x, y)
+        best = nearer(best, px, py)
         ax, ay = bx, by
     return best
 
