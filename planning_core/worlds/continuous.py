@@ -160,7 +160,7 @@ class ContinuousWorld:
         :meth:`body_test` (the family's compiled slice loop calls its ``free``)."""
         radius = max(math.hypot(px, py) for px, py in body.points)
         margin = radius + CLEARANCE_MARGIN * max(self.scale(), radius)
-        return BodyTest(self._bound, body.points, margin)
+        return BodyTest(self._bound, list(body.xs), list(body.ys), margin)
 
     def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
                    lows: Sequence[float], highs: Sequence[float], margin: float) -> LinkTests:
@@ -174,20 +174,18 @@ def _bind(box: Optional[Rect],
           obstacles: tuple[Obstacle, ...]) -> tuple[SegmentTests, Obstacles]:
     """The world bound for segment queries and for point and body queries: per
     obstacle its kind, box and data."""
-    kinds, boxes, points, discs = [], [], [], []
+    kinds, boxes, xs, ys, discs = [], [], [], [], []
     for obstacle in obstacles:
         boxes.append(obstacle.bbox)
         if isinstance(obstacle, Disc):
             kinds.append(DISC)
-            points.append(())
+            xs.append([])
+            ys.append([])
             discs.append((obstacle.cx, obstacle.cy, obstacle.r))
             continue
         discs.append((0.0, 0.0, 0.0))
-        if isinstance(obstacle, Rect):
-            kinds.append(RECT)
-            points.append(obstacle.corners)
-        else:
-            kinds.append(POLYGON)
-            points.append(obstacle.points)
-    bound = Obstacles(box.bbox if box is not None else None, kinds, boxes, points, discs)
+        kinds.append(RECT if isinstance(obstacle, Rect) else POLYGON)
+        xs.append(list(obstacle.xs))  # a rect's corners, a polygon's points
+        ys.append(list(obstacle.ys))
+    bound = Obstacles(box.bbox if box is not None else None, kinds, boxes, xs, ys, discs)
     return SegmentTests(bound), bound

@@ -4,15 +4,16 @@ The primitive predicates that :mod:`planning_core.worlds.shapes` builds its pair
 tests from live here, with the segment-against-obstacle tests themselves, so
 that the arm's hot path (a link free? how far from everything?) runs compiled
 (mypyc, ``planning_core.compiled``) from the same single copy the shapes use.
-:class:`SegmentTests` binds a world's box and obstacles once.
+:class:`SegmentTests` binds a world's box and obstacles once. A polygon (or a
+rect's corners, a segment's ends, a point) is passed as two ``list[float]``, its
+points' x and y coordinates, which compiled loops read natively.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Final, Optional, Sequence
+from typing import Final, Optional
 
-Point = tuple[float, float]
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
 RECT: Final = 0
@@ -26,14 +27,16 @@ def boxes_overlap(a: BBox, b: BBox) -> bool:
     return a[0] <= b[2] and b[0] <= a[2] and a[1] <= b[3] and b[1] <= a[3]
 
 
-def edge_separates(poly: Sequence[Point], others: Sequence[Point]) -> bool:
-    """Some edge line of the CCW ``poly`` has every point of ``others`` strictly outside it."""
-    ax, ay = poly[-1]
-    for bx, by in poly:
+def edge_separates(pxs: list[float], pys: list[float], qxs: list[float],
+                   qys: list[float]) -> bool:
+    """Some edge line of the CCW polygon p (its points' x and y coordinates) has
+    every point of q strictly outside it."""
+    ax, ay = pxs[-1], pys[-1]
+    for bx, by in zip(pxs, pys):  # zip over lists: compiled to direct item reads
         ex, ey = bx - ax, by - ay
         separated = True
-        for qx, qy in others:
-            if ex * (qy - ay) - ey * (qx - ax) >= 0.0:  # on the line or inside: no separation
+        for qx, qy in zip(qxs, qys):
+            if ex * (qy - ay) - ey * (qx - ax) >= 0.0:  # on the line or inside
                 separated = False
                 break
         if separated:
@@ -43,11 +46,12 @@ def edge_separates(poly: Sequence[Point], others: Sequence[Point]) -> bool:
 
 
 def strictly_one_side(ax: float, ay: float, bx: float, by: float,
-                      pts: Sequence[Point]) -> bool:
-    """Every point is strictly on the same side of the line through a and b (False if a == b)."""
+                      xs: list[float], ys: list[float]) -> bool:
+    """Every point (x and y coordinates) is strictly on the same side of the line
+    through a and b (False if a == b)."""
     ex, ey = bx - ax, by - ay
     side = 0.0
-    for qx, qy in pts:
+    for qx, qy in zip(xs, ys):
         cr = ex * (qy - ay) - ey * (qx - ax)
         # Opposite signs, compared directly: their product underflows to 0 below
         # about 1e-154 each (a segment 1e-199 long read as beside a polygon it is in).
@@ -98,13 +102,14 @@ def nearer(best: float, px: float, py: float) -> float:
     return best
 
 
-def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
-    """Distance from the point to the closed CCW polygon (0 inside or on it)."""
-    if not edge_separates(points, ((x, y),)):
+def polygon_distance(xs: list[float], ys: list[float], x: float, y: float) -> float:
+    """Distance from the point to the closed CCW polygon of points (xs, ys) (0
+    inside or on it)."""
+    if not edge_separates(xs, ys, [x], [y]):
         return 0.0
     best = math.inf
-    ax, ay = points[-1]
-    for bx, by in points:  # min() over the edges' distances, the hypot only where it may win
+    ax, ay = xs[-1], ys[-1]
+    for bx, by in zip(xs, ys):  # min() over the edges' distances, the hypot only where it may win
         px, py = segment_offset(ax, ay, bx, by, x, y)
         best = nearer(best, px, py)
         ax, ay = bx, by
@@ -112,9 +117,10 @@ def polygon_distance(points: Sequence[Point], x: float, y: float) -> float:
 
 
 def segment_meets_rect(x0: float, y0: float, x1: float, y1: float, box: BBox,
-                       rect: BBox, corners: Sequence[Point]) -> bool:
-    """SAT: bounding boxes (the rect's axes), then the segment's line against the corners."""
-    return boxes_overlap(box, rect) and not strictly_one_side(x0, y0, x1, y1, corners)
+                       rect: BBox, xs: list[float], ys: list[float]) -> bool:
+    """SAT: bounding boxes (the rect's axes), then the segment's line against the
+    corners (xs, ys)."""
+    return boxes_overlap(box, rect) and not strictly_one_side(x0, y0, x1, y1, xs, ys)
 
 
 def segment_meets_disc(x0: float, y0: float, x1: float, y1: float, box: BBox,
@@ -124,13 +130,13 @@ def segment_meets_disc(x0: float, y0: float, x1: float, y1: float, box: BBox,
 
 
 def segment_meets_polygon(x0: float, y0: float, x1: float, y1: float, box: BBox,
-                          poly_box: BBox, points: Sequence[Point]) -> bool:
-    """SAT with the polygon's edge lines and the segment's own line."""
+                          poly_box: BBox, xs: list[float], ys: list[float]) -> bool:
+    """SAT with the edge lines of the polygon (xs, ys) and the segment's own line."""
     if not boxes_overlap(box, poly_box):
         return False
-    if edge_separates(points, ((x0, y0), (x1, y1))):
+    if edge_separates(xs, ys, [x0, x1], [y0, y1]):
         return False
-    return not strictly_one_side(x0, y0, x1, y1, points)
+    return not strictly_one_side(x0, y0, x1, y1, xs, ys)
 
 
 def segment_disc_gap(x0: float, y0: float, x1: float, y1: float,
@@ -140,26 +146,26 @@ def segment_disc_gap(x0: float, y0: float, x1: float, y1: float,
 
 
 def segment_rect_gap(x0: float, y0: float, x1: float, y1: float, rect: BBox,
-                     corners: tuple[Point, ...]) -> float:
-    """Distance from a closed segment to a closed rect it does not touch."""
+                     xs: list[float], ys: list[float]) -> float:
+    """Distance from a closed segment to a closed rect (corners xs, ys) it does not touch."""
     rx0, ry0, rx1, ry1 = rect
     best = math.hypot(max(max(rx0 - x0, 0.0), x0 - rx1), max(max(ry0 - y0, 0.0), y0 - ry1))
     best = nearer(best, max(max(rx0 - x1, 0.0), x1 - rx1), max(max(ry0 - y1, 0.0), y1 - ry1))
-    return corner_gap(x0, y0, x1, y1, corners, best)
+    return corner_gap(x0, y0, x1, y1, xs, ys, best)
 
 
 def segment_polygon_gap(x0: float, y0: float, x1: float, y1: float,
-                        points: tuple[Point, ...]) -> float:
-    """Distance from a closed segment to a closed CCW polygon it does not touch."""
-    best = min(polygon_distance(points, x0, y0), polygon_distance(points, x1, y1))
-    return corner_gap(x0, y0, x1, y1, points, best)
+                        xs: list[float], ys: list[float]) -> float:
+    """Distance from a closed segment to a closed CCW polygon (xs, ys) it does not touch."""
+    best = min(polygon_distance(xs, ys, x0, y0), polygon_distance(xs, ys, x1, y1))
+    return corner_gap(x0, y0, x1, y1, xs, ys, best)
 
 
-def corner_gap(x0: float, y0: float, x1: float, y1: float, corners: tuple[Point, ...],
-               best: float) -> float:
-    """``best`` or a corner's distance to the segment, whichever is less (two
-    disjoint convex sets are nearest at a vertex of one of them)."""
-    for vx, vy in corners:
+def corner_gap(x0: float, y0: float, x1: float, y1: float, xs: list[float],
+               ys: list[float], best: float) -> float:
+    """``best`` or a corner's (xs, ys) distance to the segment, whichever is less
+    (two disjoint convex sets are nearest at a vertex of one of them)."""
+    for vx, vy in zip(xs, ys):
         px, py = segment_offset(x0, y0, x1, y1, vx, vy)
         best = nearer(best, px, py)
     return best
@@ -170,15 +176,18 @@ class Obstacles:
     point and body queries)."""
 
     def __init__(self, box: Optional[BBox], kinds: list[int], boxes: list[BBox],
-                 points: list[tuple[Point, ...]], discs: list[tuple[float, float, float]]):
+                 xs: list[list[float]], ys: list[list[float]],
+                 discs: list[tuple[float, float, float]]):
         self.has_box = box is not None
         self.box: BBox = box if box is not None else (-math.inf, -math.inf, math.inf, math.inf)
         self.kinds = kinds
         """Per obstacle: RECT, DISC or POLYGON."""
         self.boxes = boxes
         """Per obstacle: its bounding box."""
-        self.points = points
-        """Per obstacle: a rect's corners or a polygon's points (CCW); () for a disc."""
+        self.xs = xs
+        self.ys = ys
+        """Per obstacle: the x and the y coordinates of a rect's corners or a
+        polygon's points (CCW); empty for a disc."""
         self.discs = discs
         """Per obstacle: a disc's (cx, cy, r); zeros for the others."""
 
@@ -190,7 +199,7 @@ class SegmentTests:
     def __init__(self, world: Obstacles):
         self.has_box, self.box = world.has_box, world.box
         self.kinds, self.boxes = world.kinds, world.boxes
-        self.points, self.discs = world.points, world.discs
+        self.xs, self.ys, self.discs = world.xs, world.ys, world.discs
 
     def free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """The closed segment is in the closed box and touches no closed obstacle (a
@@ -216,11 +225,12 @@ class SegmentTests:
     def _meets(self, i: int, x0: float, y0: float, x1: float, y1: float, extent: BBox) -> bool:
         kind = self.kinds[i]
         if kind == RECT:
-            return segment_meets_rect(x0, y0, x1, y1, extent, self.boxes[i], self.points[i])
+            return segment_meets_rect(x0, y0, x1, y1, extent, self.boxes[i], self.xs[i], self.ys[i])
         if kind == DISC:
             cx, cy, r = self.discs[i]
             return segment_meets_disc(x0, y0, x1, y1, extent, self.boxes[i], cx, cy, r)
-        return segment_meets_polygon(x0, y0, x1, y1, extent, self.boxes[i], self.points[i])
+        return segment_meets_polygon(x0, y0, x1, y1, extent, self.boxes[i],
+                                     self.xs[i], self.ys[i])
 
     def gap(self, x0: float, y0: float, x1: float, y1: float, enough: float) -> float:
         """The distance from a free closed segment to the box's sides and the
@@ -250,5 +260,5 @@ class SegmentTests:
             cx, cy, r = self.discs[i]
             return segment_disc_gap(x0, y0, x1, y1, cx, cy, r)
         if kind == RECT:
-            return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.points[i])
-        return segment_polygon_gap(x0, y0, x1, y1, self.points[i])
+            return segment_rect_gap(x0, y0, x1, y1, self.boxes[i], self.xs[i], self.ys[i])
+        return segment_polygon_gap(x0, y0, x1, y1, self.xs[i], self.ys[i])

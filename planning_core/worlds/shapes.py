@@ -59,6 +59,9 @@ class Rect:
     y1: float
     bbox: BBox = field(init=False, repr=False, compare=False)
     corners: tuple[Point, ...] = field(init=False, repr=False, compare=False)
+    xs: list[float] = field(init=False, repr=False, compare=False)
+    ys: list[float] = field(init=False, repr=False, compare=False)
+    """The corners' x and y coordinates (as the primitives take them; not to be changed)."""
 
     def __post_init__(self) -> None:
         x0, y0, x1, y1 = (float(v) for v in (self.x0, self.y0, self.x1, self.y1))
@@ -70,6 +73,8 @@ class Rect:
             object.__setattr__(self, name, v)
         object.__setattr__(self, "bbox", (x0, y0, x1, y1))
         object.__setattr__(self, "corners", ((x0, y0), (x1, y0), (x1, y1), (x0, y1)))
+        object.__setattr__(self, "xs", [x0, x1, x1, x0])
+        object.__setattr__(self, "ys", [y0, y0, y1, y1])
 
     @property
     def polygon(self) -> ConvexPolygon:
@@ -137,17 +142,23 @@ class ConvexPolygon:
 
     points: tuple[Point, ...]
     bbox: BBox = field(init=False, repr=False, compare=False)
+    xs: list[float] = field(init=False, repr=False, compare=False)
+    ys: list[float] = field(init=False, repr=False, compare=False)
+    """The points' x and y coordinates (as the primitives take them; not to be changed)."""
 
     def __post_init__(self) -> None:
         pts = _validated_ccw(self.points)
         object.__setattr__(self, "points", pts)
         object.__setattr__(self, "bbox", _bbox_of(pts))
+        object.__setattr__(self, "xs", [p[0] for p in pts])
+        object.__setattr__(self, "ys", [p[1] for p in pts])
 
     @classmethod
     def _trusted(cls, points: tuple[Point, ...], bbox: BBox) -> ConvexPolygon:
         """No validation: ``points`` are known convex and counter-clockwise."""
         poly = object.__new__(cls)
-        poly.__dict__.update(points=points, bbox=bbox)  # frozen: bypass __setattr__
+        poly.__dict__.update(points=points, bbox=bbox,  # frozen: bypass __setattr__
+                             xs=[p[0] for p in points], ys=[p[1] for p in points])
         return poly
 
 
@@ -223,7 +234,7 @@ def place(polygon: ConvexPolygon, x: float, y: float, theta: float) -> ConvexPol
     exactly ``x in [-0.5, 0.5]``. This moves no vertex by more than
     ``SNAP`` times its distance from the origin.
     """
-    xs, ys = placed_coordinates(polygon.points, x, y, theta)
+    xs, ys = placed_coordinates(polygon.xs, polygon.ys, x, y, theta)
     return ConvexPolygon._trusted(tuple(zip(xs, ys)), (min(xs), min(ys), max(xs), max(ys)))
 
 
@@ -242,27 +253,27 @@ def polygons_intersect(a: ConvexPolygon, b: ConvexPolygon) -> bool:
     """Separating axis theorem over both polygons' edge normals."""
     if not boxes_overlap(a.bbox, b.bbox):
         return False
-    return not (_edge_separates(a.points, b.points) or _edge_separates(b.points, a.points))
+    return not (_edge_separates(a.xs, a.ys, b.xs, b.ys) or _edge_separates(b.xs, b.ys, a.xs, a.ys))
 
 
 def polygon_rect_intersect(p: ConvexPolygon, rect: Rect) -> bool:
     """SAT: the rect's axes are the bounding-box test, then the polygon's edges."""
-    return boxes_overlap(p.bbox, rect.bbox) and not _edge_separates(p.points, rect.corners)
+    return boxes_overlap(p.bbox, rect.bbox) and not _edge_separates(p.xs, p.ys, rect.xs, rect.ys)
 
 
 def polygon_disc_intersect(p: ConvexPolygon, d: Disc) -> bool:
     """Centre inside the polygon, or the polygon's closest point within ``r`` (tangent counts)."""
-    return boxes_overlap(p.bbox, d.bbox) and _poly_disc(p.points, d.cx, d.cy, d.r)
+    return boxes_overlap(p.bbox, d.bbox) and _poly_disc(p.xs, p.ys, d.cx, d.cy, d.r)
 
 
 def segment_polygon_intersect(s: Segment, p: ConvexPolygon) -> bool:
     """SAT with the polygon's edge lines and the segment's own line."""
-    return segment_meets_polygon(s.x0, s.y0, s.x1, s.y1, s.bbox, p.bbox, p.points)
+    return segment_meets_polygon(s.x0, s.y0, s.x1, s.y1, s.bbox, p.bbox, p.xs, p.ys)
 
 
 def segment_rect_intersect(s: Segment, rect: Rect) -> bool:
     """SAT: bounding boxes (the rect's axes), then the segment's line against the corners."""
-    return segment_meets_rect(s.x0, s.y0, s.x1, s.y1, s.bbox, rect.bbox, rect.corners)
+    return segment_meets_rect(s.x0, s.y0, s.x1, s.y1, s.bbox, rect.bbox, rect.xs, rect.ys)
 
 
 def segment_disc_intersect(s: Segment, d: Disc) -> bool:
@@ -274,12 +285,10 @@ def segments_intersect(s: Segment, t: Segment) -> bool:
     """Closed segments share a point (orientation tests; collinear ones by their boxes)."""
     if not boxes_overlap(s.bbox, t.bbox):
         return False
-    ends_t = ((t.x0, t.y0), (t.x1, t.y1))
-    ends_s = ((s.x0, s.y0), (s.x1, s.y1))
-    if _strictly_one_side(s.x0, s.y0, s.x1, s.y1, ends_t):
+    if _strictly_one_side(s.x0, s.y0, s.x1, s.y1, [t.x0, t.x1], [t.y0, t.y1]):
         return False
     # not strictly apart on either line, boxes overlap: they meet (collinear case included)
-    return not _strictly_one_side(t.x0, t.y0, t.x1, t.y1, ends_s)
+    return not _strictly_one_side(t.x0, t.y0, t.x1, t.y1, [s.x0, s.x1], [s.y0, s.y1])
 
 
 def disc_rect_intersect(d: Disc, rect: Rect) -> bool:
@@ -342,7 +351,7 @@ def inside_box(shape: Shape, box: Rect) -> bool:
 def point_in(shape: Shape, x: float, y: float) -> bool:
     """The point lies in the closed ``shape`` (on the boundary counts)."""
     if isinstance(shape, ConvexPolygon):
-        return not _edge_separates(shape.points, ((x, y),))
+        return not _edge_separates(shape.xs, shape.ys, [x], [y])
     if isinstance(shape, Disc):
         dx, dy = x - shape.cx, y - shape.cy
         return dx * dx + dy * dy <= shape.r * shape.r
@@ -361,7 +370,7 @@ def point_distance(shape: Shape, x: float, y: float) -> float:
         return rect_distance(shape.bbox, x, y)
     if isinstance(shape, Segment):
         return _segment_distance(shape.x0, shape.y0, shape.x1, shape.y1, x, y)
-    return polygon_distance(shape.points, x, y)
+    return polygon_distance(shape.xs, shape.ys, x, y)
 
 
 # --- Gaps (distances between disjoint shapes) ---------------------------------------
@@ -374,5 +383,5 @@ def segment_gap(shape: Union[Rect, Disc, ConvexPolygon],
     if isinstance(shape, Disc):
         return segment_disc_gap(x0, y0, x1, y1, shape.cx, shape.cy, shape.r)
     if isinstance(shape, Rect):
-        return segment_rect_gap(x0, y0, x1, y1, shape.bbox, shape.corners)
-    return segment_polygon_gap(x0, y0, x1, y1, shape.points)
+        return segment_rect_gap(x0, y0, x1, y1, shape.bbox, shape.xs, shape.ys)
+    return segment_polygon_gap(x0, y0, x1, y1, shape.xs, shape.ys)
