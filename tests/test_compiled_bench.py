@@ -57,3 +57,12 @@ def test_stats_line_is_read():
         "rrt_cli build: compiled (8 modules)\nrrt_cli stats: status=solved planner=rrt "
         "vehicle=point seed=1 iterations=4 tree_nodes=5 planning_seconds=0.000835\n")
     assert found.groups() == ("solved", "0.000835")
+
+
+def test_the_geometric_family_runs_as_vehicles_against_family_ompl():
+    rigid = [problem_id(path) for path in bench_compiled.problems_for("rigid2", [])]
+    assert rigid == [f"rigid2-scene{k}" for k in (1, 2, 3)]
+    arms = bench_compiled.problems_for("arm2", ["*pair1"])
+    assert len(arms) == 1 and arms[0].suffix == ".kp"
+    argv, _ = bench_compiled.command("compiled", "arm2", "rrtconnect", 4, 5.0)
+    assert argv[0].endswith("run.sh") and argv[1:3] == ["-planner", "rrtconnect"]
