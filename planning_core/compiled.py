@@ -1,9 +1,10 @@
 """The hot modules compiled ahead of time (mypyc), used only while they match their source.
 
 ``tools/build_compiled.py`` compiles the modules of :data:`MODULES` from their
-annotated Python source into ``.build/compiled/`` (outside the source tree, so
-nothing ever picks up a compiled module by accident) and writes a manifest: the
-interpreter's extension suffix and the SHA-256 of every compiled source.
+annotated Python source, and the C kernels of :data:`KERNELS`, into
+``.build/compiled/`` (outside the source tree, so nothing ever picks up a compiled
+module by accident) and writes a manifest: the interpreter's extension suffix and
+the SHA-256 of every compiled source.
 :func:`activate` checks that manifest against the sources and only then puts the
 compiled folder first on the packages' ``__path__``; otherwise the same source
 runs interpreted, with the same bytes out, and :func:`activate` says why.
@@ -45,6 +46,10 @@ MODULES = (
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 
+KERNELS = {"planning_core.worlds._body_kernel": "planning_core/worlds/body_kernel.c"}
+"""Hand-written C kernels built with them (module: source), each with a Python
+reference that runs without the build (``BodyTest.meets``)."""
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BUILD_DIR = os.path.join(ROOT, ".build", "compiled")
 MANIFEST = "manifest.txt"
@@ -65,6 +70,11 @@ def extension_suffix() -> str:
     """The interpreter's ABI tag as its extension modules' file suffix."""
     import _imp  # built in: importlib.machinery's own source of the suffixes
     return _imp.extension_suffixes()[0]
+
+
+def sources() -> list[str]:
+    """The repository-relative paths of every source the build compiles."""
+    return [source_path(module) for module in MODULES] + list(KERNELS.values())
 
 
 def source_digest(path: str) -> str:
@@ -117,10 +127,9 @@ def why_not_fresh(build_dir: str) -> str | None:
     _manifest_fields = fields
     if fields.get("suffix") != extension_suffix():
         return f"the compiled modules were built for another interpreter ({fields.get('suffix')})"
-    if {key for key in fields if key.endswith(".py")} != {source_path(m) for m in MODULES}:
+    if {key for key in fields if key.endswith((".py", ".c"))} != set(sources()):
         return "the compile list changed since the compiled modules were built (./make.sh rebuilds)"
-    for module in MODULES:
-        path = source_path(module)
+    for path in sources():
         if fields.get(path) != source_digest(os.path.join(ROOT, path)):
             return f"{path} changed since the compiled modules were built (./make.sh rebuilds)"
     return None
@@ -138,11 +147,11 @@ def activate(build_dir: str = BUILD_DIR) -> str:
         state = f"interpreted: {why}"
         return state
     sys.path.append(build_dir)  # mypyc's shared library of the group, a top-level module
-    for package in sorted({module.rpartition(".")[0] for module in MODULES}):
+    for package in sorted({module.rpartition(".")[0] for module in (*MODULES, *KERNELS)}):
         folder = os.path.join(build_dir, *package.split("."))
         __import__(package)
         sys.modules[package].__path__.insert(0, folder)
     global generated_names
     generated_names = frozenset(_manifest_fields.get("generated", "").split())
-    state = f"compiled ({len(MODULES)} modules from {build_dir})"
+    state = f"compiled ({len(MODULES)} modules, {len(KERNELS)} C kernel, from {build_dir})"
     return state

@@ -55,9 +55,7 @@ def fake_build(tmp_path: Path, change: dict[str, str] | None = None) -> Path:
     """A build folder whose manifest matches the sources, with ``change``'s lines
     replaced (no compiled files: only the manifest is read before use)."""
     fields = {"suffix": compiled.extension_suffix()}
-    fields.update({compiled.source_path(module):
-                   compiled.source_digest(str(ROOT / compiled.source_path(module)))
-                   for module in compiled.MODULES})
+    fields.update({path: compiled.source_digest(str(ROOT / path)) for path in compiled.sources()})
     fields.update(change or {})
     (tmp_path / compiled.MANIFEST).write_text(
         "".join(f"{key} {value}\n" for key, value in fields.items()))
@@ -69,10 +67,11 @@ def test_a_matching_manifest_is_fresh(tmp_path, monkeypatch):
     assert compiled.why_not_fresh(str(fake_build(tmp_path))) is None
 
 
-@pytest.mark.parametrize("module", [compiled.MODULES[0], compiled.MODULES[-1]])
-def test_an_edited_source_is_never_used_compiled(tmp_path, monkeypatch, module):
+@pytest.mark.parametrize("path", [compiled.source_path(compiled.MODULES[0]),
+                                  compiled.source_path(compiled.MODULES[-1]),
+                                  *compiled.KERNELS.values()])
+def test_an_edited_source_is_never_used_compiled(tmp_path, monkeypatch, path):
     monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
-    path = compiled.source_path(module)
     build = fake_build(tmp_path, {path: "0" * 64})
     assert compiled.activate(str(build)) == (
         f"interpreted: {path} changed since the compiled modules were built (./make.sh rebuilds)")
@@ -178,7 +177,8 @@ def test_run_sh_stats_says_which_ran(disable):
                               timeout=120)
     assert done.returncode == 0, done.stderr
     expected = "rrt_cli build: interpreted: RRT_INTERPRETED is set" if disable else (
-        f"rrt_cli build: compiled ({len(compiled.MODULES)} modules from {compiled.BUILD_DIR})")
+        f"rrt_cli build: compiled ({len(compiled.MODULES)} modules, "
+        f"{len(compiled.KERNELS)} C kernel, from {compiled.BUILD_DIR})")
     assert expected in done.stderr.splitlines()
 
 
@@ -204,14 +204,21 @@ def test_the_build_used_the_pinned_flags():
 
 def test_the_compiled_body_test_answers_as_the_shapes_do():
     """tests/planning_core/worlds/test_body_tests.py's seeded walks, with the compiled
-    build (the unit run imports the interpreted source)."""
+    build (the unit run imports the interpreted source) and its C kernel."""
     fresh_or_skip()
     probe = ("from planning_core.compiled import activate\nactivate()\n"
              "from tests.planning_core.worlds.test_body_tests import check_random_walks\n"
              "check_random_walks(seed=7)\n"
-             "import planning_core.worlds.body_tests as t\nprint(t.__file__)\n")
+             "import planning_core.worlds.body_tests as t\nprint(t.__file__)\n"
+             "from planning_core.worlds.continuous import ContinuousWorld\n"
+             "from planning_core.worlds.shapes import body_polygon\n"
+             "test = ContinuousWorld(None, ()).body_tester(body_polygon('rect', [2, 1]))\n"
+             "print(test.native_meets.__self__.__class__.__module__)\n")
     done = run_probe(probe, timeout=120)
-    assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == [os.path.join(compiled.BUILD_DIR, "planning_core", "worlds",
+                                                "body_tests" + compiled.extension_suffix()),
+                                   "planning_core.worlds._body_kernel"]
 
 
 def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():

@@ -1,4 +1,5 @@
-"""Compile the hot modules (planning_core.compiled.MODULES) with mypyc into .build/compiled/.
+"""Compile the hot modules (planning_core.compiled.MODULES) with mypyc, and the C
+kernels (planning_core.compiled.KERNELS), into .build/compiled/.
 
 Usage: ``python tools/build_compiled.py`` (``./make.sh`` runs it when mypy and a C
 compiler are there). Needs mypy (mypyc) and a C compiler; exit 1 with one line
@@ -34,11 +35,12 @@ GROUP = "rrt_hot"
 
 _SETUP = """
 import sys
-from setuptools import setup
+from setuptools import Extension, setup
 from mypyc.build import mypycify
+kernels = [Extension(name, [source]) for name, source in {kernels!r}.items()]
 setup(name="rrt-hot", ext_modules=mypycify(sys.argv.pop(1).split(",") + {mypy_flags!r},
                                           opt_level="2", group_name={group!r},
-                                          target_dir={target!r}))
+                                          target_dir={target!r}) + kernels)
 """
 
 
@@ -58,7 +60,7 @@ def _compile(work: Path) -> list[str]:
     returns the generated modules' names."""
     setup = work / "setup_hot.py"
     setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=GROUP,
-                                   target=str(work / "c")))
+                                   target=str(work / "c"), kernels=compiled.KERNELS))
     generated = _write_generated(work / "generated")
     paths = ",".join([compiled.source_path(module) for module in compiled.MODULES]
                      + [str(path) for path in generated])
@@ -99,8 +101,7 @@ def _manifest(digests: dict[str, str], generated: list[str]) -> str:
 def build(target: Path = Path(compiled.BUILD_DIR)) -> Path:
     """Compile into ``target`` (replaced whole); returns it."""
     # The digests are taken before compiling: a source edited meanwhile reads as stale.
-    digests = {compiled.source_path(m): compiled.source_digest(str(ROOT / compiled.source_path(m)))
-               for m in compiled.MODULES}
+    digests = {path: compiled.source_digest(str(ROOT / path)) for path in compiled.sources()}
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".tmp-") as temporary:
         work = Path(temporary)
@@ -125,7 +126,8 @@ def main() -> int:
     except (RuntimeError, OSError) as error:
         print(f"build_compiled: {error}", file=sys.stderr)
         return 1
-    print(f"build_compiled: {len(compiled.MODULES)} modules compiled into {target}",
+    print(f"build_compiled: {len(compiled.MODULES)} modules and {len(compiled.KERNELS)} C "
+          f"kernel compiled into {target}",
           file=sys.stderr)
     return 0
 

@@ -12,7 +12,7 @@ a world's :class:`~planning_core.worlds.segment_tests.Obstacles`.
 from __future__ import annotations
 
 import math
-from typing import Final
+from typing import Any, Final
 
 from planning_core.worlds.segment_tests import (
     DISC,
@@ -121,6 +121,17 @@ def obstacle_distance(world: Obstacles, i: int, x: float, y: float) -> float:
     return polygon_distance(world.xs[i], world.ys[i], x, y)
 
 
+def native_meets(world: Obstacles, body_xs: list[float], body_ys: list[float]) -> Any:
+    """``meets`` of the C kernel (``planning_core/worlds/body_kernel.c``) for this body
+    and world: only the compiled build holds the kernel, else None."""
+    try:
+        from planning_core.worlds._body_kernel import BodyKernel
+    except ImportError:
+        return None
+    return BodyKernel(body_xs, body_ys, world.box, world.kinds, world.boxes, world.xs,
+                      world.ys, world.discs).meets
+
+
 class BodyTest:
     """A body's points bound to a world (:class:`Obstacles`): :meth:`free` is the
     per-slice collision test of a car, with the free disc it remembers."""
@@ -147,6 +158,8 @@ class BodyTest:
         self.last_y = math.nan
         self.last_gap = 0.0
         """Where the clearance was last measured, and it."""
+        self.native_meets: Any = native_meets(world, body_xs, body_ys)
+        """The C kernel's :meth:`meets` when the compiled build is in use, else None."""
 
     def free(self, x: float, y: float, theta: float) -> bool:
         """``polygon_free(place(body, x, y, theta))`` by the same float operations,
@@ -155,14 +168,11 @@ class BodyTest:
         dx, dy = x - self.disc_x, y - self.disc_y
         if dx * dx + dy * dy <= self.disc_r2 and theta - theta == 0.0:  # a finite angle
             return True
-        xs, ys = placed_coordinates(self.body_xs, self.body_ys, x, y, theta)
-        x0, x1 = _extent(xs)
-        y0, y1 = _extent(ys)
-        box = self.box
-        if not (x0 <= x1 and y0 <= y1 and box[0] <= x0 and x1 <= box[2]
-                and box[1] <= y0 and y1 <= box[3]):
-            return False
-        if self._meets_any(xs, ys, x0, y0, x1, y1):
+        native = self.native_meets
+        if native is not None:
+            if native(x, y, theta):
+                return False
+        elif self.meets(x, y, theta):
             return False
         if not (abs(x) < math.inf and abs(y) < math.inf):
             return True  # free far out (no box): no disc centred there
@@ -174,6 +184,18 @@ class BodyTest:
         if gap > margin:
             self.disc_x, self.disc_y, self.disc_r2 = x, y, (gap - margin) ** 2
         return True
+
+    def meets(self, x: float, y: float, theta: float) -> bool:
+        """The body placed at (x, y, theta) leaves the box or meets an obstacle: the
+        reference of the C kernel (``body_kernel.c``) that the compiled build uses."""
+        xs, ys = placed_coordinates(self.body_xs, self.body_ys, x, y, theta)
+        x0, x1 = _extent(xs)
+        y0, y1 = _extent(ys)
+        box = self.box
+        if not (x0 <= x1 and y0 <= y1 and box[0] <= x0 and x1 <= box[2]
+                and box[1] <= y0 and y1 <= box[3]):
+            return True
+        return self._meets_any(xs, ys, x0, y0, x1, y1)
 
     def _meets_any(self, xs: list[float], ys: list[float],
                    x0: float, y0: float, x1: float, y1: float) -> bool:
