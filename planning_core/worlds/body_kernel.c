@@ -1,14 +1,18 @@
-/* A placed body's full collision test in C: planning_core.worlds._body_kernel.
+/* A placed body's full collision test and a point's clearance in C:
+   planning_core.worlds._body_kernel.
 
-   BodyKernel(body_xs, body_ys, box, kinds, boxes, xs, ys, discs).meets(x, y, theta)
-   answers as BodyTest.meets in body_tests.py, its reference: the body's points
-   rotated by theta and moved to (x, y), then outside the closed box, or meeting
-   a closed obstacle (bounding boxes first; a disc by its nearest edge, a rect
-   by the body's edge lines, a polygon by both polygons' edge lines). The same
-   float operations in the same order (no fused multiply-adds: the build pins
-   -ffp-contract=off), so the same poses meet; placed(x, y, theta) returns the
-   placed points, for the tests that compare them bit for bit. Built with the
-   compiled modules (tools/build_compiled.py) and used only with them. */
+   BodyKernel(body_xs, body_ys, has_box, box, kinds, boxes, xs, ys, discs) binds a
+   body's points and a world's box and obstacles (segment_tests.Obstacles) as C
+   arrays. meets(x, y, theta) answers as BodyTest.meets in body_tests.py, its
+   reference: the body's points rotated by theta and moved to (x, y), then outside
+   the closed box, or meeting a closed obstacle (bounding boxes first; a disc by
+   its nearest edge, a rect by the body's edge lines, a polygon by both polygons'
+   edge lines). clearance(x, y) is body_tests.clearance, Python's math.hypot
+   called where that takes one. The same float operations in the same order (no
+   fused multiply-adds: the build pins -ffp-contract=off), so the same poses meet
+   and the same clearances come out; placed(x, y, theta) returns the placed points,
+   for the tests that compare them bit for bit. Built with the compiled modules
+   (tools/build_compiled.py) and used only with them. */
 
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -25,6 +29,7 @@ typedef struct {
     double *bx, *by;       /* the body in its own frame (CCW) */
     double *px, *py;       /* the body placed (scratch) */
     double box[4];         /* xmin, ymin, xmax, ymax (closed; infinite without a box) */
+    int has_box;
     Py_ssize_t m;          /* obstacles */
     int *kinds;
     double *boxes;         /* four per obstacle: its bounding box */
@@ -167,6 +172,91 @@ static int meets(BodyKernel *k, double x, double y, double theta)
     return 0;
 }
 
+/* ---- clearance: a point's distance to the obstacles and the box's sides ---- */
+
+static PyObject *hypot_function; /* Python's math.hypot: its floats, not libm's hypot */
+
+/* math.hypot(a, b); NaN with an exception set when it fails (out of memory). */
+static double py_hypot(double a, double b)
+{
+    PyObject *args[2] = {PyFloat_FromDouble(a), PyFloat_FromDouble(b)};
+    double value = NAN;
+    if (args[0] != NULL && args[1] != NULL) {
+        PyObject *result = PyObject_Vectorcall(hypot_function, args, 2, NULL);
+        if (result != NULL) {
+            value = PyFloat_AsDouble(result);
+            Py_DECREF(result);
+        }
+    }
+    Py_XDECREF(args[0]);
+    Py_XDECREF(args[1]);
+    return value;
+}
+
+/* Python's two-argument min() and max(): the second only when strictly less/greater. */
+static double min2(double a, double b) { return b < a ? b : a; }
+static double max2(double a, double b) { return b > a ? b : a; }
+
+/* segment_tests.nearer: min(best, hypot(px, py)), the hypot only where it may win. */
+static double nearer(double best, double px, double py)
+{
+    if (max2(fabs(px), fabs(py)) < best) {
+        double d = py_hypot(px, py);
+        if (d < best)
+            return d;
+    }
+    return best;
+}
+
+/* segment_tests.polygon_distance: the point to the closed CCW polygon (0 inside). */
+static double polygon_distance(const double *xs, const double *ys, Py_ssize_t n,
+                               double x, double y)
+{
+    if (!edge_separates(xs, ys, n, &x, &y, 1))
+        return 0.0;
+    double best = INFINITY, ax = xs[n - 1], ay = ys[n - 1];
+    for (Py_ssize_t i = 0; i < n; i++) {
+        double bx = xs[i], by = ys[i];
+        double ex = bx - ax, ey = by - ay, wx = x - ax, wy = y - ay; /* segment_offset */
+        double l2 = ex * ex + ey * ey;
+        double t = l2 == 0.0 ? 0.0 : min2(1.0, max2(0.0, (ex * wx + ey * wy) / l2));
+        best = nearer(best, wx - t * ex, wy - t * ey);
+        ax = bx;
+        ay = by;
+    }
+    return best;
+}
+
+/* body_tests.obstacle_distance: the point to obstacle i. */
+static double obstacle_distance(BodyKernel *k, Py_ssize_t i, double x, double y)
+{
+    const double *b = k->boxes + 4 * i, *d = k->discs + 3 * i;
+    switch (k->kinds[i]) {
+    case DISC:
+        return max2(0.0, py_hypot(x - d[0], y - d[1]) - d[2]);
+    case RECT:
+        return py_hypot(max2(max2(b[0] - x, 0.0), x - b[2]), max2(max2(b[1] - y, 0.0), y - b[3]));
+    default:
+        return polygon_distance(k->ox + k->first[i], k->oy + k->first[i],
+                                k->first[i + 1] - k->first[i], x, y);
+    }
+}
+
+/* body_tests.clearance: the point to the nearest obstacle or box side. */
+static double clearance(BodyKernel *k, double x, double y)
+{
+    const double *box = k->box;
+    double gap = INFINITY;
+    if (k->has_box)
+        gap = max2(0.0, min2(min2(min2(x - box[0], box[2] - x), y - box[1]), box[3] - y));
+    for (Py_ssize_t i = 0; i < k->m; i++) {
+        const double *b = k->boxes + 4 * i;
+        if (max2(b[0] - x, x - b[2]) < gap && max2(b[1] - y, y - b[3]) < gap)
+            gap = min2(gap, obstacle_distance(k, i, x, y));
+    }
+    return gap;
+}
+
 /* ---- Python glue: arguments in, the arrays filled once ---- */
 
 static int read_doubles(PyObject *sequence, double *out, Py_ssize_t count)
@@ -249,15 +339,17 @@ static Py_ssize_t point_offsets(BodyKernel *k, PyObject *xs)
 static int kernel_init(BodyKernel *k, PyObject *args, PyObject *kwargs)
 {
     PyObject *body_xs, *body_ys, *box, *kinds, *boxes, *xs, *ys, *discs;
-    static char *names[] = {"body_xs", "body_ys", "box", "kinds", "boxes", "xs", "ys",
-                            "discs", NULL};
+    int has_box;
+    static char *names[] = {"body_xs", "body_ys", "has_box", "box", "kinds", "boxes", "xs",
+                            "ys", "discs", NULL};
     if (k->memory != NULL) {
         PyErr_SetString(PyExc_RuntimeError, "BodyKernel: already initialised");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOOOOOO", names, &body_xs, &body_ys,
-                                     &box, &kinds, &boxes, &xs, &ys, &discs))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOpOOOOOO", names, &body_xs, &body_ys,
+                                     &has_box, &box, &kinds, &boxes, &xs, &ys, &discs))
         return -1;
+    k->has_box = has_box;
     k->n = length(body_xs);
     k->m = length(kinds);
     if (k->n < 0 || k->m < 0)
@@ -301,17 +393,19 @@ static void kernel_dealloc(BodyKernel *k)
     Py_TYPE(k)->tp_free((PyObject *)k);
 }
 
-static int pose(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs, double out[3])
+/* The count floats of args into out; -1 with an exception when they are not. */
+static int floats(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs, double *out,
+                  Py_ssize_t count)
 {
     if (k->memory == NULL) {
         PyErr_SetString(PyExc_RuntimeError, "BodyKernel: not initialised");
         return -1;
     }
-    if (nargs != 3) {
-        PyErr_SetString(PyExc_TypeError, "BodyKernel: x, y and theta expected");
+    if (nargs != count) {
+        PyErr_Format(PyExc_TypeError, "BodyKernel: %zd floats expected", count);
         return -1;
     }
-    for (int i = 0; i < 3; i++) {
+    for (Py_ssize_t i = 0; i < count; i++) {
         out[i] = PyFloat_AsDouble(args[i]);
         if (out[i] == -1.0 && PyErr_Occurred())
             return -1;
@@ -322,15 +416,24 @@ static int pose(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs, double o
 static PyObject *kernel_meets(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs)
 {
     double p[3];
-    if (pose(k, args, nargs, p) < 0)
+    if (floats(k, args, nargs, p, 3) < 0)
         return NULL;
     return PyBool_FromLong(meets(k, p[0], p[1], p[2]));
+}
+
+static PyObject *kernel_clearance(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs)
+{
+    double p[2];
+    if (floats(k, args, nargs, p, 2) < 0)
+        return NULL;
+    double gap = clearance(k, p[0], p[1]);
+    return PyErr_Occurred() ? NULL : PyFloat_FromDouble(gap);
 }
 
 static PyObject *kernel_placed(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs)
 {
     double p[3];
-    if (pose(k, args, nargs, p) < 0)
+    if (floats(k, args, nargs, p, 3) < 0)
         return NULL;
     place(k, p[0], p[1], p[2]);
     PyObject *xs = PyList_New(k->n), *ys = PyList_New(k->n);
@@ -347,6 +450,8 @@ static PyObject *kernel_placed(BodyKernel *k, PyObject *const *args, Py_ssize_t 
 static PyMethodDef kernel_methods[] = {
     {"meets", (PyCFunction)(void (*)(void))kernel_meets, METH_FASTCALL,
      "meets(x, y, theta): placed there, the body leaves the box or meets an obstacle."},
+    {"clearance", (PyCFunction)(void (*)(void))kernel_clearance, METH_FASTCALL,
+     "clearance(x, y): the point's distance to the world, as body_tests.clearance."},
     {"placed", (PyCFunction)(void (*)(void))kernel_placed, METH_FASTCALL,
      "placed(x, y, theta): the placed points' (xs, ys), as body_tests.placed_coordinates."},
     {NULL, NULL, 0, NULL},
@@ -374,6 +479,15 @@ PyMODINIT_FUNC PyInit__body_kernel(void)
 {
     if (PyType_Ready(&BodyKernelType) < 0)
         return NULL;
+    if (hypot_function == NULL) {
+        PyObject *math = PyImport_ImportModule("math");
+        if (math == NULL)
+            return NULL;
+        hypot_function = PyObject_GetAttrString(math, "hypot");
+        Py_DECREF(math);
+        if (hypot_function == NULL)
+            return NULL;
+    }
     PyObject *module = PyModule_Create(&kernel_module);
     if (module == NULL)
         return NULL;

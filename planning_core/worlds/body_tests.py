@@ -121,15 +121,15 @@ def obstacle_distance(world: Obstacles, i: int, x: float, y: float) -> float:
     return polygon_distance(world.xs[i], world.ys[i], x, y)
 
 
-def native_meets(world: Obstacles, body_xs: list[float], body_ys: list[float]) -> Any:
-    """``meets`` of the C kernel (``planning_core/worlds/body_kernel.c``) for this body
-    and world: only the compiled build holds the kernel, else None."""
+def native_kernel(world: Obstacles, body_xs: list[float], body_ys: list[float]) -> Any:
+    """The C kernel (``planning_core/worlds/body_kernel.c``) for this body and world:
+    only the compiled build holds it, else None."""
     try:
         from planning_core.worlds._body_kernel import BodyKernel
     except ImportError:
         return None
-    return BodyKernel(body_xs, body_ys, world.box, world.kinds, world.boxes, world.xs,
-                      world.ys, world.discs).meets
+    return BodyKernel(body_xs, body_ys, world.has_box, world.box, world.kinds, world.boxes,
+                      world.xs, world.ys, world.discs)
 
 
 class BodyTest:
@@ -158,8 +158,11 @@ class BodyTest:
         self.last_y = math.nan
         self.last_gap = 0.0
         """Where the clearance was last measured, and it."""
-        self.native_meets: Any = native_meets(world, body_xs, body_ys)
-        """The C kernel's :meth:`meets` when the compiled build is in use, else None."""
+        kernel = native_kernel(world, body_xs, body_ys)
+        self.native_meets: Any = None if kernel is None else kernel.meets
+        self.native_clearance: Any = None if kernel is None else kernel.clearance
+        """The C kernel's :meth:`meets` and :func:`clearance` where the compiled build
+        is in use, else None."""
 
     def free(self, x: float, y: float, theta: float) -> bool:
         """``polygon_free(place(body, x, y, theta))`` by the same float operations,
@@ -176,10 +179,14 @@ class BodyTest:
             return False
         if not (abs(x) < math.inf and abs(y) < math.inf):
             return True  # free far out (no box): no disc centred there
-        margin = self.margin
-        if self.last_gap + math.hypot(x - self.last_x, y - self.last_y) <= margin:
-            return True  # no room for a free disc here yet
-        gap = clearance(self.world, x, y)
+        margin, moved_x, moved_y = self.margin, x - self.last_x, y - self.last_y
+        # No room for a free disc here yet? The hypot is never below the larger leg,
+        # so where the leg leaves room the hypot, taken only otherwise, does too.
+        if (self.last_gap + max(abs(moved_x), abs(moved_y)) <= margin
+                and self.last_gap + math.hypot(moved_x, moved_y) <= margin):
+            return True
+        native = self.native_clearance
+        gap = clearance(self.world, x, y) if native is None else native(x, y)
         self.last_x, self.last_y, self.last_gap = x, y, gap
         if gap > margin:
             self.disc_x, self.disc_y, self.disc_r2 = x, y, (gap - margin) ** 2

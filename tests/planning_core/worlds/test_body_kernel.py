@@ -1,7 +1,7 @@
 """The body test's C kernel (planning_core/worlds/body_kernel.c, built with the
-compiled modules) answers as its reference, ``BodyTest.meets`` run interpreted here:
-the same placed points bit for bit and the same verdict for every pose, touching,
-NaN and infinite ones included; with it in use the body test still answers as the
+compiled modules) answers as its references, ``BodyTest.meets`` and ``clearance``
+run interpreted here: the same placed points and clearances bit for bit and the
+same verdict for every pose, touching, NaN and infinite ones included; with it in use the body test still answers as the
 shapes do. Skipped where the compiled build is not in use."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from planning_core import compiled
 from planning_core.worlds import segment_tests
-from planning_core.worlds.body_tests import BodyTest, placed_coordinates
+from planning_core.worlds.body_tests import BodyTest, clearance, placed_coordinates
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.shapes import body_polygon
 from tests.planning_core.worlds.test_body_tests import (OBSTACLES, POSE, check_random_walks,
@@ -67,8 +67,9 @@ def kernel_in_use():
 
 def kernel_for(test: BodyTest):
     world = test.world
-    return kernel_module().BodyKernel(test.body_xs, test.body_ys, world.box, world.kinds,
-                                      world.boxes, world.xs, world.ys, world.discs)
+    return kernel_module().BodyKernel(test.body_xs, test.body_ys, world.has_box, world.box,
+                                      world.kinds, world.boxes, world.xs, world.ys,
+                                      world.discs)
 
 
 def bits(values: list[float]) -> list[str]:
@@ -76,7 +77,8 @@ def bits(values: list[float]) -> list[str]:
 
 
 def check_poses(test: BodyTest, poses) -> set:
-    """The kernel's placed points and verdicts equal the reference's; the verdicts seen."""
+    """The kernel's placed points, verdicts and clearances equal the reference's;
+    the verdicts seen."""
     kernel, seen = kernel_for(test), set()
     for x, y, theta in poses:
         expected = test.meets(x, y, theta)
@@ -84,6 +86,7 @@ def check_poses(test: BodyTest, poses) -> set:
         xs, ys = kernel.placed(x, y, theta)
         ref_xs, ref_ys = placed_coordinates(test.body_xs, test.body_ys, x, y, theta)
         assert (bits(xs), bits(ys)) == (bits(ref_xs), bits(ref_ys)), (x, y, theta)
+        assert kernel.clearance(x, y).hex() == clearance(test.world, x, y).hex(), (x, y)
         seen.add(expected)
     return seen
 
@@ -127,7 +130,7 @@ def test_with_the_kernel_the_body_test_answers_as_the_shapes_do():
 def test_bad_arguments_raise_a_python_error():
     module = kernel_module()
     world = ContinuousWorld(BOX, OBSTACLES).body_tester(body_polygon("rect", [2, 1])).world
-    fields = (world.box, world.kinds, world.boxes, world.xs, world.ys, world.discs)
+    fields = (world.has_box, world.box, world.kinds, world.boxes, world.xs, world.ys, world.discs)
     with pytest.raises(ValueError):
         module.BodyKernel([], [], *fields)
     with pytest.raises(ValueError):
