@@ -113,7 +113,7 @@ sys.exit(why_not_fresh(BUILD_DIR) is not None)' 2>/dev/null; then
     if ! "${python[@]}" -c 'import mypyc' 2>/dev/null; then
         step "note: mypy is not installed; the hot modules run interpreted"; return 0
     fi
-    step "compiling the hot modules (mypyc) into .build/compiled"
+    step "compiling the hot modules (mypyc) and the C kernel into .build/compiled"
     if ! "${python[@]}" tools/build_compiled.py >>"$LOG" 2>&1; then
         step "note: compiling failed (see $LOG); the hot modules run interpreted"
     fi
