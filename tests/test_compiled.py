@@ -78,6 +78,26 @@ def test_an_edited_source_is_never_used_compiled(tmp_path, monkeypatch, path):
     assert compiled.state.startswith("interpreted")
 
 
+def test_a_source_as_at_the_build_is_not_hashed_and_a_touched_one_is(tmp_path, monkeypatch):
+    """Size and modification time as recorded: fresh without hashing (as CPython trusts
+    its bytecode cache); either changed: the digest decides, so a wrong one is stale."""
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    path = compiled.source_path(compiled.MODULES[0])
+    stamps = {compiled.STAMP + p: compiled.source_stamp(str(ROOT / p)) for p in compiled.sources()}
+    build = fake_build(tmp_path, {**stamps, path: "0" * 64})
+    monkeypatch.setattr(compiled, "source_digest", lambda _: pytest.fail("hashed"))
+    assert compiled.why_not_fresh(str(build)) is None
+    monkeypatch.undo()
+    monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)
+    size, mtime = stamps[compiled.STAMP + path].split()
+    build = fake_build(tmp_path, {**stamps, path: "0" * 64,
+                                  compiled.STAMP + path: f"{size} {int(mtime) - 1}"})
+    assert compiled.why_not_fresh(str(build)) == (
+        f"{path} changed since the compiled modules were built (./make.sh rebuilds)")
+    build = fake_build(tmp_path, {compiled.STAMP + path: f"{size} {int(mtime) - 1}"})
+    assert compiled.why_not_fresh(str(build)) is None  # touched, not changed
+
+
 def test_a_build_of_another_compile_list_is_not_used(tmp_path, monkeypatch):
     """A module dropped from the list keeps its old binary in the build: never used."""
     monkeypatch.delenv(compiled.DISABLE_VARIABLE, raising=False)

@@ -5,7 +5,8 @@ Usage: ``python tools/build_compiled.py`` (``./make.sh`` runs it when mypy and a
 compiler are there). Needs mypy (mypyc) and a C compiler; exit 1 with one line
 when the build fails, 2 when a tool is missing. The build goes to a fresh
 temporary folder and replaces ``.build/compiled/`` only when complete, its
-manifest (interpreter suffix, SHA-256 of each compiled source) written last.
+manifest (interpreter suffix, SHA-256, size and modification time of each compiled
+source) written last.
 
 Flags are pinned so every build computes the same bits as the interpreter:
 ``-ffp-contract=off`` (no fused multiply-adds), never ``-march=native`` or
@@ -92,6 +93,8 @@ def _write_generated(folder: Path) -> list[Path]:
 
 
 def _manifest(digests: dict[str, str], generated: list[str]) -> str:
+    """The manifest's text: suffix, flags, generated modules, then ``key value``
+    lines (each source's digest, and its stamp under ``compiled.STAMP``)."""
     lines = [f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}",
              f"generated {' '.join(generated)}"]
     lines += [f"{path} {digest}" for path, digest in digests.items()]
@@ -102,13 +105,15 @@ def build(target: Path = Path(compiled.BUILD_DIR)) -> Path:
     """Compile into ``target`` (replaced whole); returns it."""
     # The digests are taken before compiling: a source edited meanwhile reads as stale.
     digests = {path: compiled.source_digest(str(ROOT / path)) for path in compiled.sources()}
+    stamps = {compiled.STAMP + path: compiled.source_stamp(str(ROOT / path))
+              for path in compiled.sources()}
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".tmp-") as temporary:
         work = Path(temporary)
         generated = _compile(work)
         out = work / "out"
         shutil.copy2(work / "build.log", out / "build.log")
-        (out / compiled.MANIFEST).write_text(_manifest(digests, generated))
+        (out / compiled.MANIFEST).write_text(_manifest({**digests, **stamps}, generated))
         old = work / "old"
         if target.exists():
             target.rename(old)
