@@ -355,7 +355,7 @@ class _Search(TreeSearch):
         cell = self.grid.cells.get(key)
         if cell is None:
             created = self.iterations + 1  # the start's cell: 1
-            cell = _Cell(key, (1.0 + math.log(created))
+            cell = _Cell(key, (1.0 + math.log(float(created)))
                          / (_GOAL_DISTANCE_OFFSET + distance), created)
             cell.motions.append(node)
             cell.coverage = 1
@@ -528,7 +528,7 @@ def _select_cell(grid: _CellGrid, rng: random.Random, border_fraction: float) ->
     if cell.score < _EPSILON:
         # Scores only shrink; before they underflow, lift them all (as OMPL does).
         for other in grid.cells.values():
-            other.score += 1.0 + math.log(other.created)
+            other.score += 1.0 + math.log(float(other.created))
         grid.rebuild()
         cell = grid.top(exterior) or grid.top(not exterior)
         assert cell is not None
