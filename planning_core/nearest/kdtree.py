@@ -226,7 +226,7 @@ class KDTree(NearestIndex):
         first); all points when there are fewer than ``k``."""
         if k <= 0 or self._root is None:
             return []
-        import heapq  # here, not at the top: most runs never ask (0.6 ms of start-up)
+        import heapq  # here, not at the top: most runs never ask (start-up, docs/hot-paths.md)
         q, key, slack = self._prepare(query)
         metric, points = self._metric, self._points
         # Max-heap of the k best as (-d, -index): the top is the worst kept.

@@ -174,9 +174,7 @@ class _KNearest(_Scan):
         self.heap: list[tuple[float, int]] = []
 
     def scan(self, indices: list[int]) -> float:
-        # Imported here, not at the top: only k_nearest (PRM) asks, and importing
-        # heapq is 0.6 ms of a process that plans on a small map in about as much.
-        import heapq
+        import heapq  # here, not at the top: only PRM asks (start-up, docs/hot-paths.md)
         xs, ys, x, y, k, kept = self.xs, self.ys, self.x, self.y, self.k, self.heap
         for index in indices:
             ddx = xs[index] - x

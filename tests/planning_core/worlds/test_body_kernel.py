@@ -1,8 +1,9 @@
 """The body test's C kernel (planning_core/worlds/body_kernel.c, built with the
 compiled modules) answers as its references, ``BodyTest.meets`` and ``clearance``
 run interpreted here: the same placed points and clearances bit for bit and the
-same verdict for every pose, touching, NaN and infinite ones included; with it in use the body test still answers as the
-shapes do. Skipped where the compiled build is not in use."""
+same verdict for every pose, touching, NaN and infinite ones included; with it in
+use the body test still answers as the shapes do. Skipped where the compiled build
+is not in use."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ from hypothesis import strategies as st
 
 from planning_core import compiled
 from planning_core.worlds import segment_tests
-from planning_core.worlds.body_tests import BodyTest, clearance, placed_coordinates
+from planning_core.worlds.body_tests import (BodyTest, clearance, native_kernel,
+                                             placed_coordinates)
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.shapes import body_polygon
 from tests.planning_core.worlds.test_body_tests import (OBSTACLES, POSE, check_random_walks,
@@ -66,10 +68,9 @@ def kernel_in_use():
 
 
 def kernel_for(test: BodyTest):
-    world = test.world
-    return kernel_module().BodyKernel(test.body_xs, test.body_ys, world.has_box, world.box,
-                                      world.kinds, world.boxes, world.xs, world.ys,
-                                      world.discs)
+    """The kernel the compiled build binds to this test's body and world."""
+    with kernel_in_use():
+        return native_kernel(test.world, test.body_xs, test.body_ys)
 
 
 def bits(values: list[float]) -> list[str]:
@@ -104,7 +105,8 @@ def test_seeded_walks_meet_as_the_reference_with_the_same_placed_points():
         for body in bodies:
             assert check_poses(world.body_tester(body),
                                random_poses(rng, 3000, 0.05)) == {True, False}
-    angles = [rng.uniform(-1e6, 1e6) for _ in range(2000)] + [k * math.pi / 4 for k in range(-16, 17)]
+    angles = [rng.uniform(-1e6, 1e6) for _ in range(2000)]
+    angles += [k * math.pi / 4 for k in range(-16, 17)]
     test = ContinuousWorld(BOX, OBSTACLES).body_tester(body_polygon("rect", [2, 1]))
     check_poses(test, [(5.0, 5.0, theta) for theta in angles])
 
