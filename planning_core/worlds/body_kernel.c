@@ -37,6 +37,7 @@ typedef struct {
     Py_ssize_t *first;     /* m + 1 offsets into ox, oy: obstacle i's points */
     double *ox, *oy;       /* rects' corners and polygons' points (CCW) */
     double *memory;        /* the one block the arrays above live in */
+    int ready;             /* __init__ ran once and read every argument */
 } BodyKernel;
 
 /* Some edge line of the CCW polygon p has every point of q strictly outside it
@@ -342,7 +343,7 @@ static int kernel_init(BodyKernel *k, PyObject *args, PyObject *kwargs)
     int has_box;
     static char *names[] = {"body_xs", "body_ys", "has_box", "box", "kinds", "boxes", "xs",
                             "ys", "discs", NULL};
-    if (k->memory != NULL) {
+    if (k->first != NULL || k->kinds != NULL || k->memory != NULL) {
         PyErr_SetString(PyExc_RuntimeError, "BodyKernel: already initialised");
         return -1;
     }
@@ -382,6 +383,7 @@ static int kernel_init(BodyKernel *k, PyObject *args, PyObject *kwargs)
         if (read_obstacle(k, i, kinds, boxes, xs, ys, discs) < 0)
             return -1;
     }
+    k->ready = 1;
     return 0;
 }
 
@@ -397,7 +399,7 @@ static void kernel_dealloc(BodyKernel *k)
 static int floats(BodyKernel *k, PyObject *const *args, Py_ssize_t nargs, double *out,
                   Py_ssize_t count)
 {
-    if (k->memory == NULL) {
+    if (!k->ready) {
         PyErr_SetString(PyExc_RuntimeError, "BodyKernel: not initialised");
         return -1;
     }

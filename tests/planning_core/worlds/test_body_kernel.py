@@ -146,3 +146,10 @@ def test_bad_arguments_raise_a_python_error():
         kernel.meets(1.0, 2.0, None)
     with pytest.raises(RuntimeError):
         module.BodyKernel.__new__(module.BodyKernel).meets(1.0, 2.0, 0.0)
+    failed = module.BodyKernel.__new__(module.BodyKernel)
+    with pytest.raises(TypeError):
+        failed.__init__([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], *fields[:-1], [None])
+    with pytest.raises(RuntimeError):  # half read: never used, never read again
+        failed.meets(1.0, 2.0, 0.0)
+    with pytest.raises(RuntimeError):
+        failed.__init__([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], *fields)
