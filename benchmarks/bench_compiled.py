@@ -36,12 +36,13 @@ from benchmarks.generator import problem_id
 from benchmarks.ompl_cpp_programs import binary, family_input, grid_input
 from benchmarks.presets import PRESETS, select_problems
 from planning_core.problem_text import parse_problem
+from planning_core.vehicles import Vehicle
 
 ROOT = Path(__file__).resolve().parent.parent
 OUR_PLANNERS = {"point": ("rrt", "rrtconnect"), "spaceship": ("rrt", "kpiece", "rgrrt"),
                 "left": ("rrt", "kpiece", "rgrrt"), "arm2": ("rrt", "rrtconnect"),
                 "rigid2": ("rrt", "rrtconnect")}
-VEHICLE_FLAGS = {"point": [], "spaceship": ["-grad"], "left": ["-grad", "-left"]}
+VEHICLE_FLAGS = {vehicle.value: list(vehicle.flags) for vehicle in Vehicle}
 FAMILY = ("arm2", "rigid2")
 """The geometric family's systems, benchmarked as vehicles of their own."""
 STATS = re.compile(r"stats: status=(\w+) .*planning_seconds=([0-9.]+)")
@@ -177,12 +178,12 @@ def kernel_times(seed: int = 1, calls: int = 2000,
     import time
     from planning_core.nearest.quadtree import QuadtreeNearest
     from planning_core.problem import Problem
-    from planning_core.space_information import grid_space_information
+    from planning_core.setups import grid_setup
     from planning_core.systems.spaceship import SLICES, SYSTEM
     from rrt_cli.planners.steering import ControlSamplingSteering
     side = 100
-    si = grid_space_information(
-        Problem(side, side, bytes(side * side), (1.0, 1.0), (99.0, 99.0)), "spaceship")
+    si = grid_setup(
+        Problem(side, side, bytes(side * side), (1.0, 1.0), (99.0, 99.0)), "spaceship").si
     world = si.world
     rng = random.Random(seed)
     starts = [(rng.uniform(40, 60), rng.uniform(40, 60), rng.uniform(-1, 1), rng.uniform(-1, 1))

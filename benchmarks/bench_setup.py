@@ -99,7 +99,7 @@ def setup_rows(size: int, density: float, repeats: int, dijkstra_max: int) -> li
             f"{counted * 1e3:.1f} ms ({listed / counted:.1f}x); lookup "
             f"{_lookup_us(free_list, rng):.2f} / {_lookup_us(free_cells, rng):.2f} us |"]
     if size <= dijkstra_max:
-        dijkstra = _median_seconds(lambda: CellDistanceToGoal(problem), max(1, repeats // 2))
+        dijkstra = _median_seconds(lambda: CellDistanceToGoal(problem, problem.goal), max(1, repeats // 2))
         rows[0] += f" {dijkstra * 1e3:.0f} ms ({dijkstra / size ** 2 * 1e6:.1f} us/cell) |"
     else:
         rows[0] += " (skipped) |"

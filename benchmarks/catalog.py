@@ -15,8 +15,7 @@ from pathlib import Path
 from planning_core.vehicles import Vehicle
 
 ROOT = Path(__file__).resolve().parent.parent
-VEHICLE_FLAGS = {Vehicle.POINT: (), Vehicle.SPACESHIP: ("-grad",),
-                 Vehicle.LEFT_SPACESHIP: ("-grad", "-left")}
+VEHICLE_FLAGS = {vehicle: vehicle.flags for vehicle in Vehicle}
 OMPL_PREFIX = "ompl-"
 
 

@@ -23,7 +23,7 @@ from pathlib import Path
 from benchmarks.catalog import ROOT, ompl_installed
 from benchmarks.family import FAMILY_DIR, SOLUTIONS_DIR, family_problems
 from planning_core.kinoplan_text import parse_kinoplan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 
 SOURCES = SOLUTIONS_DIR / "SOURCES.txt"
 SEEDS = (1, 2, 3)
@@ -36,8 +36,7 @@ def solution_path(problem: Path) -> Path:
 def check(problem: Path, answer_text: str):
     """The validator's report on ``answer_text`` for ``problem``."""
     from validator.checks import validate_plan
-    si = kinoplan_space_information(parse_kinoplan(problem.read_text()))
-    return validate_plan(si, answer_text)
+    return validate_plan(kinoplan_setup(parse_kinoplan(problem.read_text())), answer_text)
 
 
 def problems_without_valid_answer(directory: Path = FAMILY_DIR) -> dict[str, str]:

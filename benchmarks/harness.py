@@ -230,8 +230,8 @@ def _validate(problem, vehicle: Vehicle | None, stdout_text: str, strict: bool) 
 
     checked = time.perf_counter()
     if is_kinoplan(problem):
-        from planning_core.space_information import kinoplan_space_information
-        report = validate_plan(kinoplan_space_information(problem), stdout_text, strict)
+        from planning_core.setups import kinoplan_setup
+        report = validate_plan(kinoplan_setup(problem), stdout_text, strict)
     else:
         report = validate_output(problem, vehicle, stdout_text, strict=strict)
     validation_seconds = time.perf_counter() - checked

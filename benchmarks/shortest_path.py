@@ -139,7 +139,7 @@ def _feasible_length(problem: Problem, obstacles: _OpenObstacles) -> float:
     is still in sight. It prunes the search to the ellipse of points whose
     detour is no longer than this path.
     """
-    chain = CellDistanceToGoal(problem).chain_from(*problem.start)
+    chain = CellDistanceToGoal(problem, problem.goal).chain_from(*problem.start)
     if chain is None:
         return math.inf
     route = [problem.start, *((c + 0.5, r + 0.5) for c, r in chain), problem.goal]

@@ -12,7 +12,7 @@ from pathlib import Path
 from grading.config import MODE_FLAGS, MODE_VEHICLES, GradeConfig, Limits
 from grading.sandbox import Sandbox, probe
 from planning_core.problem_text import format_problem, parse_problem
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from validator.checks import ValidationReport, validate_plan
 from validator.cli import decode_output, solver_messages
 from validator.run_planner import PlannerRun, run_planner
@@ -95,14 +95,14 @@ def run_one(config: GradeConfig, submission: str, problem_name: str, mode: str) 
     """Run ``./run.sh`` with the mode's flags on the problem, validate; the ``runs`` row."""
     sandbox = sandbox_here(config.sandbox)
     problem = parse_problem((config.problems / problem_name).read_text(errors="replace"))
-    si = grid_space_information(problem, MODE_VEHICLES[mode])
+    setup = grid_setup(problem, MODE_VEHICLES[mode])
     stem = f"{Path(problem_name).stem}-{mode}"
     log = config.out / "logs" / submission / f"{stem}.stderr"
     run = _contained(config, sandbox, submission, ["./run.sh", *MODE_FLAGS[mode]], log,
                      format_problem(problem).encode("ascii"), config.limits, config.timeout)
     report = None
     if run.ran_to_completion:
-        report = validate_plan(si, decode_output(run.output), output_cap_exceeded=(
+        report = validate_plan(setup, decode_output(run.output), output_cap_exceeded=(
             run.output_cap if run.output_cap_exceeded else None))
     row = {"submission": submission, "problem": problem_name, "mode": mode,
            "exit_status": run.exit_code, "signal": run.signal, "timed_out": int(run.timed_out),

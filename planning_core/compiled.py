@@ -40,6 +40,7 @@ MODULES = (
     "planning_core.heap",
     "planning_core.nearest.index",
     "planning_core.goal",
+    "planning_core.projections",
     "rrt_cli.planners.base",
     "rrt_cli.planners.tree",
     "rrt_cli.planners.rrtconnect",

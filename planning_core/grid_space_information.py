@@ -1,55 +1,182 @@
-"""The grid's SpaceInformation: a course vehicle (point, spaceship, left-only
-spaceship) on a ``.sw`` map, its goal region around a point.
+"""The grid's SpaceInformations: the course's vehicles on a ``.sw`` map
+(:mod:`planning_core.space_information` says what each answers).
 
-Compiled (mypyc, ``planning_core.compiled``): the grid planners ask it several
-times per iteration, so its methods are native calls into the compiled world.
-:mod:`planning_core.space_information` says what a SpaceInformation is and
-holds the kinoplan family's.
+:class:`GridGeometricSpaceInformation`, the point vehicle: straight segments
+checked exactly (every cell a segment touches), nearest by position (a quadtree),
+targets over the open map or the free cells, the frontier of a tree and a proof
+that the start and goal are cut off. :class:`GridControlSpaceInformation`, the
+spaceships: a control held for one step of 20 slices, every slice's position
+checked, nearest by position, and what KPIECE1 and RG-RRT ask, set by
+:class:`GridControlOptions`.
+
+Compiled (mypyc, ``planning_core.compiled``): the grid planners ask these several
+times per iteration, so their methods are native calls into the compiled world.
 """
 
 from __future__ import annotations
 
+import math
 import random
-from typing import TYPE_CHECKING, Any, Optional, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence
 
-from planning_core.goal import GoalRegion
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
-from planning_core.problem import Problem
-from planning_core.systems import load as load_system
+from planning_core.samplers import randint
 from planning_core.worlds.grid import GridWorld, SegmentHit
 
 if TYPE_CHECKING:  # for the annotation only: the quadtree is imported when a planner asks
     from planning_core.nearest.quadtree import QuadtreeNearest
 
+# Ranks a braking line that meets a blocked cell after every free one (well below
+# the distance's "unreachable", so those still order among themselves).
+BLOCKED_BRAKING_PENALTY = 1e6
 
-class SpaceInformation:
-    """A system moving in a world from a start toward a goal region."""
 
-    def __init__(self, system: Any, world: GridWorld, start: tuple[float, ...],
-                 goal: GoalRegion):
+class GridGeometricSpaceInformation:
+    """The point vehicle on a grid: straight segments, checked exactly."""
+
+    def __init__(self, system: Any, world: GridWorld) -> None:
         self.system = system
         self.world = world
-        self.start = start
-        self.goal = goal
-        self.duration: Optional[tuple[int, int]] = None
-        """A kinoplan system's (KMIN, KMAX): planners choose how long a control is
-        held. None here: a grid vehicle holds each control for one whole step."""
+        self.dimension = 2
+        self.rechecks_prefix = False
+        """The cell walk is exact: a prefix of a free segment is free."""
+        self.lazy_edges = False
+        """A roadmap checks each edge when it is made (the walk is cheap)."""
+        self.free_targets = True
+        """Uniform over the free cells (on mazes most map targets lie in walls)."""
+        self.wall_clearance = 1.0
+        """A segment cut short stops a map unit before the wall (docs/parameter-history.md)."""
         self.printable = world.point_strictly_inside
-        self.sample_control: Any = getattr(system, "sample_control", None)  # kinodynamic only
 
     @property
     def space(self) -> Any:
-        """The system's state space within this world's bounds (spaces.StateSpace)."""
+        """The map's rectangle (spaces.StateSpace)."""
         return self.system.state_space(self.world.width, self.world.height)
 
-    # -- states and motions ------------------------------------------------------
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        return math.hypot(b[0] - a[0], b[1] - a[1])
+
+    def interpolate(self, a: Sequence[float], b: Sequence[float],
+                    t: float) -> tuple[float, float]:
+        return (a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t)
+
     def is_valid(self, state: Sequence[float]) -> bool:
-        """The state's position is free (SPEC 1: in the map, not in a blocked cell)."""
+        """The position is free (SPEC 1: in the map, not in a blocked cell)."""
+        return self.world.point_free(state[0], state[1])
+
+    def can_end_at(self, state: Sequence[float]) -> bool:
+        """Free and printable (SPEC 2: strictly inside the map)."""
+        world = self.world
+        return (world.point_free(state[0], state[1])
+                and world.point_strictly_inside(state[0], state[1]))
+
+    def first_hit(self, a: Sequence[float], b: Sequence[float]) -> SegmentHit | None:
+        """Where the segment a -> b first enters a blocked cell (or leaves the
+        map), walked exactly; None when it is free."""
+        return self.world.first_blocked_cell_on_segment(a[0], a[1], b[0], b[1])
+
+    def sample_target(self, rng: random.Random) -> tuple[float, float]:
+        """A uniform position of the open map (blocked cells included)."""
+        return self.world.sample_open_position(rng)
+
+    def free_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        """``draw()``: uniform over the free cells (built once: it may walk the map)."""
+        from planning_core.worlds.grid_cells import sample_free_point
+        free_cells, width = self.world.free_cell_indices(stop), self.world.width
+        return lambda: sample_free_point(rng, free_cells, width)
+
+    def roadmap_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        """A roadmap's vertices: uniform over the free cells, as :meth:`free_sampler`."""
+        return self.free_sampler(rng, stop)
+
+    def new_nearest(self) -> PositionNearest:
+        """An empty nearest-node index (a quadtree over the map, by position)."""
+        return PositionNearest(self.world.width, self.world.height)
+
+    def goal_target(self, goal: Any, rng: random.Random) -> tuple[float, float]:
+        """The goal point, nudged inside the map when it lies on the left or bottom
+        edge (a node there could not be printed). No ``rng``."""
+        return self.world.printable_point(goal.point)
+
+    def goal_configuration(self, goal: Any, rng: random.Random) -> tuple[float, float]:
+        """Where a path ends: :meth:`goal_target`."""
+        return self.world.printable_point(goal.point)
+
+    def certainly_unreachable(self, start: Sequence[float], goal: Any,
+                              stop: Stop = None) -> bool:
+        """No chain of free cells joins the start's and the goal's (8-connected)."""
+        return self.world.certainly_disconnected(start, goal.point, stop)
+
+    def frontier(self) -> Any:
+        """An empty frontier of the map's free cells."""
+        return self.world.frontier()
+
+
+@dataclass(frozen=True)
+class GridControlOptions:
+    """How the grid's ships move for the planners that ask more than one step."""
+
+    controls_per_extension: int = 10
+    """RRT: random controls tried per extension, the valid one ending closest wins."""
+    min_steps: int = 1
+    """KPIECE1's random motion: fewest steps (one step: one control for 20 slices) kept."""
+    max_steps: int = 10
+    """KPIECE1's random motion: most steps a random control is held for."""
+    cell_size: Optional[float] = None
+    """KPIECE1's projection cell side in map units; None: half a map cell on maps
+    under 20 cells a side, one map cell (a maze corridor's width) on larger ones."""
+    velocity_cell_size: Optional[float] = 0.2
+    """With a value, KPIECE1 projects on position and velocity, velocities binned at
+    this size (map units per step); None: the position only."""
+    reach_angles: int = 8
+    """RG-RRT's reachable set: thrust directions, evenly spaced from straight ahead
+    over the ship's theta range (a half turn closed at both ends: braking included)."""
+    reach_thrusts: tuple[float, ...] = (0.5,)
+    """RG-RRT's reachable set: thrust magnitudes at every angle (coasting always too)."""
+
+    def __post_init__(self) -> None:
+        if self.controls_per_extension < 1 or self.reach_angles < 1:
+            raise ValueError("controls_per_extension and reach_angles must be at least 1")
+        if not 1 <= self.min_steps <= self.max_steps:
+            raise ValueError("need 1 <= min_steps <= max_steps")
+        for name in ("cell_size", "velocity_cell_size"):
+            value = getattr(self, name)
+            if value is not None and not value > 0.0:
+                raise ValueError(f"{name} must be positive")
+        if not all(thrust > 0.0 for thrust in self.reach_thrusts):
+            raise ValueError("reach_thrusts must be positive")
+
+
+def derived_cell_size(width: float, height: float) -> float:
+    """KPIECE1's projection cell side on a map of this size (GridControlOptions.cell_size)."""
+    return 0.5 if max(width, height) < 20 else 1.0
+
+
+class GridControlSpaceInformation:
+    """A spaceship on a grid: a control held for one step, every slice checked."""
+
+    def __init__(self, system: Any, world: GridWorld,
+                 options: GridControlOptions = GridControlOptions()) -> None:
+        self.system = system
+        self.world = world
+        self.options = options
+        self.controls_per_extension = options.controls_per_extension
+        self.printable = world.point_strictly_inside
+        self.sample_control: Any = system.sample_control
+
+    @property
+    def space(self) -> Any:
+        """Positions within the map, velocities unbounded (spaces.StateSpace)."""
+        return self.system.state_space(self.world.width, self.world.height)
+
+    def is_valid(self, state: Sequence[float]) -> bool:
+        """The position is free (SPEC 1: in the map, not in a blocked cell)."""
         return self.world.point_free(state[0], state[1])
 
     def propagate_valid(self, state: Sequence[float], control: Any) -> Any:
-        """Kinodynamic: where ``control`` leads from ``state`` if every slice is
+        """Where ``control`` leads from ``state`` in one step if every slice is
         valid and the end prints strictly inside the map; else None."""
         end: Optional[tuple[float, ...]] = self.system.propagate_while(state, control,
                                                                        self.world)
@@ -58,49 +185,100 @@ class SpaceInformation:
         return end
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> SegmentHit | None:
-        """Geometric: where the straight motion a -> b first meets an invalid
-        state, checked exactly; None when it is free."""
+        """Where the straight segment between two positions first meets a blocked
+        cell, walked exactly; None when it is free."""
         return self.world.first_blocked_cell_on_segment(a[0], a[1], b[0], b[1])
 
-    # -- sampling ----------------------------------------------------------------
     def sample_target(self, rng: random.Random) -> tuple[float, float]:
         """A uniform position of the open map (blocked cells included)."""
         return self.world.sample_open_position(rng)
 
-    def goal_target(self, rng: random.Random) -> tuple[float, float]:
-        """The goal-biased target: the goal point, nudged inside the map when it lies
-        on the left or bottom edge (a node there could not be printed). No ``rng``."""
-        return self.world.printable_point(self.goal.point)
+    def goal_target(self, goal: Any, rng: random.Random) -> tuple[float, float]:
+        """The goal point, nudged inside the map when it lies on the left or bottom
+        edge. No ``rng``."""
+        return self.world.printable_point(goal.point)
 
-    # -- nearest and closeness: by position on the grid --------------------------
-    def new_nearest(self) -> "PositionNearest":
+    def new_nearest(self) -> PositionNearest:
         """An empty nearest-node index (a quadtree over the map, by position)."""
         return PositionNearest(self.world.width, self.world.height)
 
     @staticmethod
     def closeness(end: tuple[float, ...], target: tuple[float, ...]) -> float:
-        """How far a steering end is from a target: squared position distance
-        (products, not ``** 2``: compiled, a power is a generic call)."""
+        """The squared distance of the positions (products, not ``** 2``: compiled,
+        a power is a generic call)."""
         dx, dy = end[0] - target[0], end[1] - target[1]
         return dx * dx + dy * dy
 
-    def start_in_goal_controls(self) -> Optional[tuple]:
-        """For a start already in the goal region: the path's controls, here none
-        (plan_rows prints the system's ``rest_control``, SPEC 2)."""
+    def random_motion(self, state: tuple[float, ...],
+                      rng: random.Random) -> Optional[tuple[Any, list]]:
+        """A random control held for ``min_steps`` to ``max_steps`` steps (drawn in
+        that order), stopped before the first invalid step: the control and each
+        step's state; None when fewer than ``min_steps`` were valid."""
+        options = self.options
+        control = self.sample_control(rng)
+        wanted = randint(rng, options.min_steps, options.max_steps)
+        steps: list = []
+        at = state
+        for _ in range(wanted):
+            end = self.propagate_valid(at, control)
+            if end is None:
+                break
+            steps.append(end)
+            at = end
+        return (control, steps) if len(steps) >= options.min_steps else None
+
+    def projection(self) -> Any:
+        """KPIECE1's cells: the position in cells of ``cell_size`` (and the velocity
+        in cells of ``velocity_cell_size``)."""
+        from planning_core.projections import AxesProjection
+        options, system = self.options, self.system
+        cell = options.cell_size or derived_cell_size(self.world.width, self.world.height)
+        axes = [(system.position_indices[0], 0.0, 1.0 / cell),
+                (system.position_indices[1], 0.0, 1.0 / cell)]
+        velocity = options.velocity_cell_size
+        if velocity is not None and system.velocity_indices:
+            axes += [(index, 0.0, 1.0 / velocity) for index in system.velocity_indices[:2]]
+        return AxesProjection(axes)
+
+    def reachable_controls(self) -> list:
+        """Coasting and every thrust at ``reach_angles`` directions (the system's)."""
+        return self.system.reachable_controls(self.options.reach_angles,
+                                              self.options.reach_thrusts)
+
+    def step_reach(self, state: tuple[float, ...], ends: list) -> float:
+        """How far the position can get in one step, at most (speed plus thrust)."""
+        reach: float = self.system.step_reach(state)
+        return reach
+
+    def stay_controls(self, start: Sequence[float], goal: Any) -> Optional[tuple]:
+        """A start in the goal region is the whole path; the rest control is printed."""
         return ()
 
-    # -- capabilities of the world (None where it has none) ------------------------
-    def goal_certainly_unreachable(self, stop: Stop = None) -> bool:
-        """True only when it is proved: a geometric system whose start and goal no
-        chain of free cells joins. Kinodynamic systems are checked only at slice
-        positions and may legally hop a thin wall, so for them it is never proved."""
-        if self.system.kinodynamic:
-            return False
-        return self.world.certainly_disconnected(self.start, self.goal.point, stop)
+    def certainly_unreachable(self, start: Sequence[float], goal: Any,
+                              stop: Stop = None) -> bool:
+        """Never proved: slices are checked only at their positions, so a ship may
+        legally hop a thin wall."""
+        return False
 
-    def distance_along_free_space(self, stop: Stop = None):
-        """Position -> distance to the goal along free space, or None."""
-        return self.world.distance_along_cells(stop)
+    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> Any:
+        """Position -> distance to the goal along the free cells (Dijkstra, once)."""
+        return self.world.distance_along_cells(goal.point, stop)
+
+    def stopping_point_key(self, along: Any) -> Callable[[Any], float]:
+        """State -> ``along``'s distance of where full braking would stop the ship;
+        a braking line that meets a blocked cell ranks after every free one."""
+        stopping_point, first_hit = self.system.stopping_point, self.first_hit
+        unreachable: float = along.unreachable
+
+        def key(state: Any) -> float:
+            stop_at = stopping_point(state)
+            distance: float = along(stop_at[0], stop_at[1])
+            if distance >= unreachable or first_hit(state, stop_at) is not None:
+                penalised: float = along(state[0], state[1]) + BLOCKED_BRAKING_PENALTY
+                return penalised
+            return distance
+
+        return key
 
 
 class PositionNearest(NearestIndex):
@@ -116,10 +294,5 @@ class PositionNearest(NearestIndex):
     def nearest(self, target: tuple[float, ...]) -> int:
         return self.index.nearest(target[0], target[1])
 
-
-def grid_space_information(problem: Problem, system_name) -> SpaceInformation:
-    """A ``.sw`` problem for the named system (``point``, ``spaceship``, ``left``;
-    a :class:`~planning_core.vehicles.Vehicle` names one too)."""
-    system = load_system(getattr(system_name, "value", system_name))
-    return SpaceInformation(system, GridWorld(problem), system.start_state(*problem.start),
-                            GoalRegion(problem.goal))
+    def k_nearest(self, target: tuple[float, ...], k: int) -> list[int]:
+        return self.index.k_nearest(target[0], target[1], k)

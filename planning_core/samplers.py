@@ -85,7 +85,7 @@ class MotionSampler:
     """KPIECE1's random motion on a family system (OMPL's propagateWhileValid):
     held values from ``controls``' box and a K in ``[kmin, kmax]`` (``rng``: the
     values, then K), applied by ``advance`` (the generated slice loop's) up to the
-    first invalid slice; ``(end, (*values, k))`` with ``k`` the slices done, or
+    first invalid slice; ``((*values, k), [end])`` with ``k`` the slices done, or
     None when fewer than KMIN were valid."""
 
     def __init__(self, controls: ControlSampler, advance: Any) -> None:
@@ -96,5 +96,5 @@ class MotionSampler:
         controls = self.controls
         values = controls.values.sample(rng)
         end, k = self.advance(state, values, randint(rng, controls.kmin, controls.kmax))
-        return (end, values + (k,)) if k >= controls.kmin else None
+        return (values + (k,), [end]) if k >= controls.kmin else None
 

@@ -1,126 +1,156 @@
-"""One object joining a system, a world and a goal region (OMPL's SpaceInformation).
+"""What planners ask of the space they plan in: OMPL's two SpaceInformations, as
+typed protocols.
 
-Planners and the validator take it and ask it what they need: is a state valid,
-where does a control lead while every slice stays valid, what is free between
-two states, where to sample. What only some worlds can answer (distance along a
-grid's free cells, the frontier of a tree, a proof that the goal is cut off) is
-a capability: a method that answers None when the world does not offer it, so a
-planner never branches on which vehicle it is planning for. A capability that
-may walk every cell of a big map takes an optional ``stop`` and raises
-:class:`~planning_core.interrupt.Interrupted` when it says the time is up.
+A :class:`GeometricSpaceInformation` joins a system whose motions are straight
+lines in its state space (the point vehicle on a grid; arm2 and rigid2) with a
+world: validity, the motion check, sampling, nearest neighbours. A
+:class:`ControlSpaceInformation` joins a system driven by controls (the grid's
+spaceships; the pendulum and the cars) with a world: validity, propagation while
+valid, control sampling, nearest neighbours, and what KPIECE1 and RG-RRT ask.
+Start and goal are apart, in a :class:`~planning_core.problem_definition.ProblemDefinition`.
+
+Each substrate implements both where it has such systems
+(:mod:`planning_core.grid_space_information`,
+:mod:`planning_core.family_space_information`,
+:mod:`planning_core.family_geometric_space_information`); planners ask only what
+is declared here, so none of them branches on the substrate or the vehicle. What
+only some worlds can answer (a frontier of cells, distance along free space, a
+proof that start and goal are cut off) is a capability: it answers None (or False)
+where the world has none. A capability that may walk every cell of a big map takes
+a ``stop`` and raises :class:`~planning_core.interrupt.Interrupted` when it says
+the time is up. :mod:`planning_core.setups` builds the right one for a problem.
+
+The protocols are not compiled: a compiled planner sees them as ``Any`` and calls
+whichever implementation it is given.
 """
 
 from __future__ import annotations
 
 import random
-from typing import Any, Optional, Sequence
+from typing import Any, Callable, Optional, Protocol, Sequence
 
-from planning_core.grid_space_information import (  # noqa: F401 - the grid's, re-exported
-    PositionNearest,
-    SpaceInformation,
-    grid_space_information,
-)
 from planning_core.interrupt import Stop
-from planning_core.samplers import MotionSampler
+from planning_core.nearest.index import NearestIndex
+from planning_core.problem_definition import Goal
 
-AnySpaceInformation = Any
-"""What planners annotate ``si`` with: any SpaceInformation (grid, kinoplan, geometric),
-not a class, so a compiled planner (planning_core.compiled) checks none at run time."""
-
-
-class KinoplanSpaceInformation:
-    """A ``kinoplan 1`` system (SPEC 5) in its continuous world: the same questions
-    as :class:`SpaceInformation`, answered over full states and the problem's metric.
-
-    Valid: the problem's state validator (bounds, body in the box, off every
-    obstacle); no printability test (the bounds are part of validity). Targets
-    are uniform states of the system's space; nearest and closeness are by the
-    metric (an exact kd-tree)."""
-
-    def __init__(self, problem):
-        from planning_core.kinoplan import body_tester, state_validator
-        from planning_core.nearest.kdtree import space_metric
-        self.problem = problem
-        self.system = system = problem.system
-        self.world = problem.world
-        self.start = problem.start
-        self.goal = problem.goal
-        self.space = system.space
-        self.is_valid = state_validator(system, self.world)
-        # The metric as the kd-tree measures (compiled: a native call, the same floats).
-        self.closeness = space_metric(self.space).distance
-        self._sample = self.space.sample_uniform
-        self.duration = (system.kmin, system.kmax) if system.kinodynamic else None
-        self.sample_target = self._sample  # the method below, bound (the hot path)
-        if system.kinodynamic:
-            # The validity test fused into the integration loop (the hot path; the
-            # generated class's methods, native calls in the compiled build).
-            fused = system.advancer(body_tester(system, self.world))
-            self.advance = fused.advance
-            self.propagate_valid = fused.propagate_valid
-            self.sample_control = system.sample_control
-            # KPIECE1's random motion (samplers.MotionSampler: the draws, then the slices).
-            self.random_motion = MotionSampler(system.control_sampler, fused.advance).sample
-
-    def propagate_valid(self, state, control):
-        """Where ``control`` leads from ``state`` if every slice is valid; else None.
-        (Each kinodynamic instance shadows this with the fused version.)"""
-        return self.system.propagate_while(state, control, self.is_valid)
-
-    def advance(self, state, control, kmax: int):
-        """``(state, k)``: ``control``'s held values applied for up to ``kmax``
-        slices, stopped before the first invalid one; the last valid state and
-        how many slices led to it (each kinodynamic instance shadows this)."""
-        raise ValueError(f"{self.system.name} is not kinodynamic")
-
-    def sample_target(self, rng: random.Random) -> tuple[float, ...]:
-        """A uniform state of the system's space (valid or not)."""
-        return self._sample(rng)
-
-    def sample_control(self, rng: random.Random):
-        return self.system.sample_control(rng)
-
-    def goal_target(self, rng: random.Random) -> tuple[float, ...]:
-        """The goal's values; the variables it does not name from a uniform sample
-        (one draw per variable; none when the goal names every variable)."""
-        if self.goal.full:
-            return self.goal.target
-        return self.goal.complete(self._sample(rng))
-
-    def new_nearest(self):
-        """An empty nearest-node index over full states (kd-tree, the metric; leaves
-        of 24: RG-RRT's inserts cheapest, RRT's queries as fast as with 16,
-        docs/planners-family.md)."""
-        from planning_core.nearest.kdtree import KDTree
-        return KDTree(self.space, leaf_capacity=24)
-
-    def start_in_goal_controls(self) -> Optional[tuple]:
-        """For a start already in the goal region: one held control, each value 0
-        clamped into its bounds, for KMIN slices, when every slice is valid and the
-        end is still in the goal region; else None (then plan as usual)."""
-        system = self.system
-        if not system.kinodynamic:
-            return ()
-        control = tuple(min(max(0.0, lo), hi) for lo, hi in system.controls) + (system.kmin,)
-        end = self.propagate_valid(self.start, control)
-        return (control,) if end is not None and self.goal.reached(end) else None
-
-    def invalid_reason(self, state: Sequence[float]) -> Optional[str]:
-        """Why ``state`` is not valid (a bound, the box, which obstacle), or None."""
-        from planning_core.kinoplan import invalid_reason
-        return invalid_reason(self.system, self.world, state, self.problem.obstacle_lines)
-
-    def goal_certainly_unreachable(self, stop: Stop = None) -> bool:
-        return False
-
-    def distance_along_free_space(self, stop: Stop = None):
-        return None
+State = tuple[float, ...]
 
 
-def kinoplan_space_information(problem) -> KinoplanSpaceInformation:
-    """The SpaceInformation of a :class:`~planning_core.kinoplan.KinoplanProblem`
-    (a geometric system's: :mod:`planning_core.geometric_space_information`)."""
-    if not problem.system.kinodynamic:
-        from planning_core.geometric_space_information import GeometricSpaceInformation
-        return GeometricSpaceInformation(problem)
-    return KinoplanSpaceInformation(problem)
+class MotionHit(Protocol):
+    """Where a straight motion first meets an invalid state."""
+
+    fraction: float
+    """Of the motion's length, in (0, 1]."""
+
+
+class GeometricSpaceInformation(Protocol):
+    """A system moving along straight lines in its state space, in a world."""
+
+    system: Any
+    """The system (its names and rows: ``planning_core.plan_rows``)."""
+    dimension: int
+    """Of the state space (PRM*'s neighbour count)."""
+    rechecks_prefix: bool
+    """A motion cut short must be checked again (its samples are not the longer one's)."""
+    lazy_edges: bool
+    """A roadmap checks an edge only when a path takes it (cheap motion checks: no)."""
+    free_targets: bool
+    """Uniform targets from valid states only pay here (RRT-Connect's default)."""
+    wall_clearance: float
+    """How far a motion cut short stops before its first invalid state (the grid:
+    a map unit; the family: one check step)."""
+
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float: ...
+
+    def interpolate(self, a: Sequence[float], b: Sequence[float], t: float) -> State: ...
+
+    def is_valid(self, state: Sequence[float]) -> bool: ...
+
+    def can_end_at(self, state: Sequence[float]) -> bool:
+        """Valid, and a path may end or turn there (the grid: strictly inside the map)."""
+
+    def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[MotionHit]:
+        """The first invalid state of the motion a -> b (``a`` not tested), or None."""
+
+    def sample_target(self, rng: random.Random) -> State:
+        """A uniform state, valid or not."""
+
+    def free_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], State]:
+        """``draw()``: a uniform valid state."""
+
+    def roadmap_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], State]:
+        """``draw()``: a roadmap's next vertex."""
+
+    def new_nearest(self) -> NearestIndex: ...
+
+    def goal_target(self, goal: Goal, rng: random.Random) -> State:
+        """A goal-biased target: a state of the goal region, valid or not."""
+
+    def goal_configuration(self, goal: Goal, rng: random.Random) -> Optional[State]:
+        """A valid state of the goal region where a path may end, or None."""
+
+    def certainly_unreachable(self, start: State, goal: Goal, stop: Stop = None) -> bool:
+        """True only when it is proved that no motion joins start and goal."""
+
+    def frontier(self) -> Any:
+        """An empty frontier of cells (RRT-Connect's targets), or None."""
+
+
+class ControlSpaceInformation(Protocol):
+    """A system driven by controls, in a world."""
+
+    system: Any
+    """The system (its names and rows: ``planning_core.plan_rows``)."""
+    controls_per_extension: int
+    """Random controls RRT tries per extension, the valid one ending closest wins
+    (OMPL's directed control sampler: the grid's ships 10, the family 1)."""
+
+    def is_valid(self, state: Sequence[float]) -> bool: ...
+
+    def sample_target(self, rng: random.Random) -> State:
+        """A uniform target for :meth:`new_nearest` and :meth:`closeness` (the grid: a
+        position; the family: a state)."""
+
+    def goal_target(self, goal: Goal, rng: random.Random) -> State:
+        """A goal-biased target, as :meth:`sample_target`'s."""
+
+    def new_nearest(self) -> NearestIndex: ...
+
+    def closeness(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """Orders pairs as the space's distance does (the grid: the squared distance
+        of the positions; the family: the metric): compared, never added."""
+
+    def sample_control(self, rng: random.Random) -> Any: ...
+
+    def propagate_valid(self, state: Sequence[float], control: Any) -> Optional[State]:
+        """Where ``control`` leads from ``state`` if every slice is valid, else None."""
+
+    def random_motion(self, state: Sequence[float],
+                      rng: random.Random) -> Optional[tuple[Any, list[State]]]:
+        """A random control held for a random duration, cut at the first invalid
+        slice: the control and the states of the nodes it makes (the grid: one per
+        step; the family: one); None when it is shorter than the least duration."""
+
+    def projection(self) -> Callable[[Sequence[float]], tuple[int, ...]]:
+        """State -> its cell in KPIECE1's grid over a projection of the state."""
+
+    def reachable_controls(self) -> list:
+        """RG-RRT's fixed set of controls: each node's reachable set is where they lead."""
+
+    def step_reach(self, state: Sequence[float], ends: list) -> float:
+        """How far, in the goal's distance, ``state`` may get in one motion
+        (``ends``: where its fixed controls lead)."""
+
+    def stay_controls(self, start: State, goal: Goal) -> Optional[tuple]:
+        """For a start in the goal region: the path's controls (none: the system's
+        rest control is printed), or None when the start cannot stay there."""
+
+    def certainly_unreachable(self, start: State, goal: Goal, stop: Stop = None) -> bool:
+        """True only when it is proved that no motion joins start and goal."""
+
+    def distance_along_free_space(self, goal: Goal, stop: Stop = None) -> Any:
+        """Position (x, y) -> distance to the goal along free space, or None."""
+
+    def stopping_point_key(self, along: Any) -> Optional[Callable[[State], float]]:
+        """State -> ``along``'s distance of where full braking would stop it, or None
+        where the system cannot say."""

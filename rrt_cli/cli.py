@@ -29,7 +29,7 @@ from planning_core.cli_args import (EXIT_USAGE, add_vehicle_flags, describe_os_e
                                     reserve_standard_fds, say, seed, vehicle_from_flags,
                                     write_stdout)
 from planning_core.plan_text import format_plan
-from planning_core.space_information import grid_space_information, kinoplan_space_information
+from planning_core.setups import grid_setup, kinoplan_setup
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopCondition
 
@@ -120,9 +120,9 @@ def parse_command_line(argv: list[str] | None):
     return parser.parse_args(argv), parser
 
 
-def _space_information(parser, args, entry):
-    """The problem on stdin as a SpaceInformation and the name of its system or
-    vehicle; None after one line on stderr (exit 2)."""
+def _setup(parser, args, entry):
+    """The problem on stdin as a :class:`~planning_core.setups.Setup` and the name of
+    its system or vehicle; None after one line on stderr (exit 2)."""
     vehicle = vehicle_from_flags(parser, args)
     if args.smooth and vehicle.system.kinodynamic:
         parser.error("-smooth works on geometric systems only (the point vehicle, arm2, rigid2)")
@@ -143,12 +143,12 @@ def _space_information(parser, args, entry):
             say(f"rrt_cli: error: planner {args.planner!r} does not plan for kinoplan "
                 f"problems of the {name} system ({_kinoplan_planners(problem.system)})")
             return None
-        return kinoplan_space_information(problem), name
+        return kinoplan_setup(problem), name
     if not entry.plans_for(vehicle.system):
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
             f"{vehicle.value} vehicle")
         return None
-    return grid_space_information(problem, vehicle.value), vehicle.value
+    return grid_setup(problem, vehicle.value), vehicle.value
 
 
 def _kinoplan_planners(system) -> str:
@@ -159,19 +159,19 @@ def _kinoplan_planners(system) -> str:
 def main(argv: list[str] | None = None) -> int:
     args, parser = parse_command_line(argv)
     entry = PLANNERS[args.planner]
-    found = _space_information(parser, args, entry)
+    found = _setup(parser, args, entry)
     if found is None:
         return EXIT_USAGE
-    si, vehicle_name = found
+    setup, vehicle_name = found
 
     run_seed = args.seed if args.seed is not None else random.SystemRandom().randrange(2 ** 63)
     rng = random.Random(run_seed)
     planner = entry.load()
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
-    result = planner.solve(si, stop, rng, planner.Params())
+    result = planner.solve(setup.si, setup.pdef, stop, rng, planner.Params())
     if args.smooth and result.solved:
         from rrt_cli.smoothing import smooth_path  # only with -smooth: start-up
-        result = dataclasses.replace(result, path=smooth_path(si, result.path, rng))
+        result = dataclasses.replace(result, path=smooth_path(setup.si, result.path, rng))
     stats = result.stats
     if args.stats:
         # One key=value line, stable for scripts (the benchmark harness parses it).
@@ -190,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
             f"(seed {run_seed})")
         return EXIT_NO_SOLUTION
     failure = write_stdout(format_plan(result.trajectory, result.tree,
-                                       ends_in_count=si.duration is not None))
+                                       ends_in_count=setup.rows_end_in_count))
     if failure is None:
         return EXIT_SOLVED
     if not isinstance(failure, BrokenPipeError):  # a reader that left (| head) wants no note

@@ -2,9 +2,9 @@
 vehicle's on a grid, and the geometric family's (arm2, rigid2).
 
 Two passes, both keeping every motion free (checked as the planners check it,
-:func:`~rrt_cli.planners.point_common.straight_lines`: the grid's exact cell walk,
-the family's samples at the check step, in the direction travelled) and the
-first and last states where they were:
+by the geometric space information: the grid's exact cell walk, the family's
+samples at the check step, in the direction travelled) and the first and last
+states where they were:
 
 1. Vertex pruning, greedy: from each kept vertex, jump to the farthest later
    vertex it sees directly (the "string pulling" idea of Geraerts & Overmars
@@ -23,7 +23,8 @@ import random
 from dataclasses import dataclass
 from typing import Sequence
 
-from rrt_cli.planners.point_common import path_length, straight_lines
+from planning_core.space_information import GeometricSpaceInformation
+from rrt_cli.planners.paths import path_length
 
 State = tuple[float, ...]
 
@@ -41,31 +42,31 @@ class SmoothingParams:
     """Pass 2 ends early after this many attempts in a row that shorten nothing."""
 
 
-def smooth_path(where, path: Sequence[Sequence[float]], rng: random.Random,
-                params: SmoothingParams = SmoothingParams()) -> tuple[State, ...]:
+def smooth_path(si: GeometricSpaceInformation, path: Sequence[Sequence[float]],
+                rng: random.Random, params: SmoothingParams = SmoothingParams()
+                ) -> tuple[State, ...]:
     """A path no longer than ``path``, with the same first and last states, whose
     motions are all free and whose states may end a path (on the grid: strictly
-    inside the map). ``where``: a SpaceInformation, or a GridWorld.
+    inside the map).
 
     ``path`` must itself be such a path (a planner's trajectory).
     """
-    lines = straight_lines(where)
     points = [tuple(float(v) for v in p) for p in path]
     if len(points) <= 2:
         return tuple(points)
-    points = prune_vertices(lines, points)
-    points = random_shortcuts(lines, points, rng, params)
+    points = prune_vertices(si, points)
+    points = random_shortcuts(si, points, rng, params)
     # Shortcuts may have lined up vertices that now see past each other.
-    return tuple(prune_vertices(lines, points))
+    return tuple(prune_vertices(si, points))
 
 
-def prune_vertices(where, points: list[State]) -> list[State]:
+def prune_vertices(si: GeometricSpaceInformation, points: list[State]) -> list[State]:
     """Greedy: from each kept vertex, the farthest later vertex in direct sight.
 
     The next vertex is always in sight (the path is free), so this ends, and
     each jump replaces a chain of motions by one no longer (triangle inequality).
     """
-    first_hit = straight_lines(where).first_hit
+    first_hit = si.first_hit
     kept = [points[0]]
     i, last = 0, len(points) - 1
     while i < last:
@@ -77,13 +78,13 @@ def prune_vertices(where, points: list[State]) -> list[State]:
     return kept
 
 
-def random_shortcuts(lines, points: list[State], rng: random.Random,
+def random_shortcuts(si: GeometricSpaceInformation, points: list[State], rng: random.Random,
                      params: SmoothingParams) -> list[State]:
     failures = 0
     for _ in range(params.shortcut_attempts):
         if failures >= params.max_failures_in_a_row or len(points) < 3:
             break
-        shorter = _try_shortcut(lines, points, rng)
+        shorter = _try_shortcut(si, points, rng)
         if shorter is None:
             failures += 1
         else:
@@ -91,15 +92,16 @@ def random_shortcuts(lines, points: list[State], rng: random.Random,
     return points
 
 
-def _try_shortcut(lines, points: list[State], rng: random.Random) -> list[State] | None:
+def _try_shortcut(si: GeometricSpaceInformation, points: list[State],
+                  rng: random.Random) -> list[State] | None:
     segments = len(points) - 1
     first, second = sorted((int(rng.random() * segments), int(rng.random() * segments)))
     if second - first < 1:
         return None  # two states on one motion: nothing to cut
-    interpolate, distance, free = lines.interpolate, lines.distance, lines.first_hit
+    interpolate, distance, free = si.interpolate, si.distance, si.first_hit
     a = interpolate(points[first], points[first + 1], rng.random())
     b = interpolate(points[second], points[second + 1], rng.random())
-    if not (lines.can_end_at(a) and lines.can_end_at(b)):
+    if not (si.can_end_at(a) and si.can_end_at(b)):
         return None
     old = (distance(a, points[first + 1]) + path_length(points[first + 1:second + 1], distance)
            + distance(points[second], b))

@@ -16,11 +16,21 @@ COURSE_DIR = ROOT / "benchmarks" / "problems" / "course"
 COURSE_PROBLEMS = sorted(COURSE_DIR.glob("*.sw"))
 
 
-def run_planner(args: list[str], stdin: str, timeout: float = 120) -> subprocess.CompletedProcess:
-    """Run ``python -m rrt_cli`` as a user would, with the problem on stdin."""
+def run_planner(args: list[str], stdin: str, timeout: float = 120,
+                interpreted: bool = False) -> subprocess.CompletedProcess:
+    """Run ``python -m rrt_cli`` as a user would, with the problem on stdin (with the
+    compiled modules when their build is fresh, unless ``interpreted``)."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
+    if interpreted:
+        env["RRT_INTERPRETED"] = "1"
     return subprocess.run([sys.executable, "-m", "rrt_cli", *args], input=stdin.encode(),
                           capture_output=True, timeout=timeout, cwd=ROOT, env=env)
+
+
+def solve_on(planner, setup, *args):
+    """``planner.solve`` (a planner module) on a :class:`~planning_core.setups.Setup`:
+    its space information and problem definition, then ``stop, rng[, params]``."""
+    return planner.solve(setup.si, setup.pdef, *args)
 
 
 @pytest.fixture(scope="session")

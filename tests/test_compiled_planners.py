@@ -10,7 +10,7 @@ import pytest
 
 from planning_core import compiled
 from planning_core.kinoplan_text import parse_kinoplan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from tests.conftest import ROOT, run_planner
 from tests.test_compiled import run_planner_compiled
 from validator.checks import validate_plan
@@ -60,6 +60,5 @@ def test_a_compiled_family_run_prints_the_interpreted_bytes(planner, problem):
     assert fast.returncode == 0, fast.stderr
     slow = run_planner(args, problem)
     assert fast.stdout == slow.stdout
-    si = kinoplan_space_information(parse_kinoplan(problem))
-    report = validate_plan(si, fast.stdout.decode())
+    report = validate_plan(kinoplan_setup(parse_kinoplan(problem)), fast.stdout.decode())
     assert report.valid, report.first_failure

@@ -23,8 +23,7 @@ from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
 from planning_core.plan_rows import row_widths
 from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
-from planning_core.space_information import (KinoplanSpaceInformation, SpaceInformation,
-                                             grid_space_information)
+from planning_core.setups import Setup, grid_setup
 from planning_core.vehicles import Vehicle
 from planning_core.worlds.grid import SAMPLE_STEP
 
@@ -201,10 +200,11 @@ def _other_answer_hint(error: PlanParseError, system) -> str:
 class _Validation:
     """One run of the checks; each ``check_*`` method returns a result or raises _Failed."""
 
-    def __init__(self, si: SpaceInformation, strict: bool, limits: Limits):
-        self.si = si
+    def __init__(self, setup: Setup, strict: bool, limits: Limits):
+        self.si = si = setup.si
+        self.pdef = setup.pdef
         self.system = si.system
-        self.problem = si.world.problem
+        self.problem = setup.problem
         self.strict = strict
         self.limits = limits
         self.world = si.world
@@ -281,7 +281,7 @@ class _Validation:
     # 4
     def check_start(self) -> CheckResult:
         row = self.plan.trajectory_row(0)
-        start, names = self.si.start, self.system.state_names
+        start, names = self.pdef.start, self.system.state_names
         line = self.line_of(0)
         sx, sy = start[0], start[1]
         if abs(row[0] - sx) > START_TOLERANCE or abs(row[1] - sy) > START_TOLERANCE:
@@ -317,7 +317,7 @@ class _Validation:
 
     # 5
     def check_goal(self) -> CheckResult:
-        plan, goal = self.plan, self.si.goal
+        plan, goal = self.plan, self.pdef.goal
         last = plan.trajectory_count - 1
         row = plan.trajectory_row(last)
         line = self.line_of(last)
@@ -477,9 +477,11 @@ class _KinoplanValidation(_Validation):
 
     state_tolerance = KINOPLAN_TOLERANCE
 
-    def __init__(self, si: KinoplanSpaceInformation, strict: bool, limits: Limits):
-        self.si, self.system, self.strict, self.limits = si, si.system, strict, limits
-        self.problem, self.world = si.problem, si.world
+    def __init__(self, setup: Setup, strict: bool, limits: Limits):
+        si = setup.si
+        self.si, self.pdef, self.system, self.strict, self.limits = (
+            si, setup.pdef, si.system, strict, limits)
+        self.problem, self.world = setup.problem, si.world
         self.plan = None
         self.warnings, self.corner_cuts = [], []
         self.path_length = self.final_state = None
@@ -527,7 +529,7 @@ class _KinoplanValidation(_Validation):
     # 4
     def check_start(self) -> CheckResult:
         row = self.plan.trajectory_row(0)[:self.n]
-        start, line = self.si.start, self.line_of(0)
+        start, line = self.pdef.start, self.line_of(0)
         gaps = _gaps(self.si.space, row, start)
         if not all(gap <= KINOPLAN_TOLERANCE for gap in gaps):
             name = self.system.state_names[max(range(self.n), key=gaps.__getitem__)]
@@ -539,7 +541,7 @@ class _KinoplanValidation(_Validation):
 
     # 5
     def check_goal(self) -> CheckResult:
-        plan, goal = self.plan, self.si.goal
+        plan, goal = self.plan, self.pdef.goal
         last = plan.trajectory_count - 1
         row, line = plan.trajectory_row(last), self.line_of(last)
         slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
@@ -592,7 +594,7 @@ class _GeometricValidation(_KinoplanValidation):
 
     # 5: the last configuration itself
     def check_goal(self) -> CheckResult:
-        goal, last = self.si.goal, self.plan.trajectory_count - 1
+        goal, last = self.pdef.goal, self.plan.trajectory_count - 1
         end, line = self.plan.trajectory_row(last), self.line_of(last)
         distance = goal.distance(end)
         if not goal.accepts(end):
@@ -660,11 +662,11 @@ def validate_output(problem: Problem, vehicle: Vehicle | str, output_text: str,
                     output_cap_exceeded: int | None = None) -> ValidationReport:
     """Run checks 1 to 7 of SPEC 3 on a planner's output for a ``.sw`` problem
     and the named vehicle (:func:`validate_plan` over its SpaceInformation)."""
-    return validate_plan(grid_space_information(problem, vehicle), output_text, strict,
+    return validate_plan(grid_setup(problem, vehicle), output_text, strict,
                          limits, output_cap_exceeded)
 
 
-def validate_plan(si: SpaceInformation, output_text: str, strict: bool = False,
+def validate_plan(setup: Setup, output_text: str, strict: bool = False,
                   limits: Limits = Limits(),
                   output_cap_exceeded: int | None = None) -> ValidationReport:
     """Run checks 1 to 7 of SPEC 3 on a planner's output.
@@ -674,11 +676,11 @@ def validate_plan(si: SpaceInformation, output_text: str, strict: bool = False,
     bytes, when the planner's output was cut off at it (check 1 then fails).
     Never raises on any text.
     """
-    if not isinstance(si, KinoplanSpaceInformation):
+    if not setup.family:
         validation = _Validation
     else:
-        validation = _KinoplanValidation if si.system.kinodynamic else _GeometricValidation
-    run = validation(si, strict, limits)
+        validation = _KinoplanValidation if setup.system.kinodynamic else _GeometricValidation
+    run = validation(setup, strict, limits)
     checks = run.run(output_text, output_cap_exceeded)
-    return ValidationReport(si.system, strict, checks, run.warnings, run.corner_cuts, run.plan,
+    return ValidationReport(setup.system, strict, checks, run.warnings, run.corner_cuts, run.plan,
                             run.path_length, run.final_state)

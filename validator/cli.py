@@ -30,7 +30,7 @@ from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_
                                     reserve_standard_fds, say, vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
-from planning_core.space_information import grid_space_information, kinoplan_space_information
+from planning_core.setups import grid_setup, kinoplan_setup
 from planning_core.vehicles import Vehicle
 from validator.checks import (CHECK_NAMES, CHECK_TITLES, INVALID_VERDICT, CheckResult,
                               ValidationReport, validate_plan)
@@ -236,12 +236,12 @@ def _parse_command_line(argv: list[str]):
     return args, vehicle, command, parser
 
 
-def _validate(run: PlannerRun, si, strict: bool
+def _validate(run: PlannerRun, setup, strict: bool
               ) -> tuple[ValidationReport | None, int, str]:
     """The report (None when the planner did not run to the end), status, verdict."""
     if not run.ran_to_completion:
         return None, EXIT_PLANNER_FAILED, INVALID_VERDICT
-    report = validate_plan(si, decode_output(run.output), strict=strict,
+    report = validate_plan(setup, decode_output(run.output), strict=strict,
                            output_cap_exceeded=run.output_cap if run.output_cap_exceeded
                            else None)
     return report, EXIT_VALID if report.valid else EXIT_INVALID, report.verdict
@@ -260,7 +260,7 @@ def _summary(run: PlannerRun, report: ValidationReport | None, pdf: str | None) 
 
 
 def _read_problem(parser, args, vehicle: Vehicle):
-    """``(problem, its text for the planner, SpaceInformation)``, or None after one
+    """``(problem, its text for the planner, Setup)``, or None after one
     line on stderr (a bad problem: exit 2); vehicle flags with a kinoplan problem
     are a usage error."""
     text = read_problem_text_from_stdin(PROG)
@@ -274,9 +274,8 @@ def _read_problem(parser, args, vehicle: Vehicle):
     if is_kinoplan(problem):
         reject_vehicle_flags(parser, args)
         # The reader accepts ASCII only: the text goes to the planner as it came.
-        return problem, text.encode("ascii"), kinoplan_space_information(problem)
-    return (problem, format_problem(problem).encode("ascii"),
-            grid_space_information(problem, vehicle))
+        return problem, text.encode("ascii"), kinoplan_setup(problem)
+    return (problem, format_problem(problem).encode("ascii"), grid_setup(problem, vehicle))
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -285,14 +284,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     found = _read_problem(parser, args, vehicle)
     if found is None:
         return EXIT_USAGE
-    problem, problem_bytes, si = found
+    problem, problem_bytes, setup = found
     kinoplan = is_kinoplan(problem)
     label = _stdin_label()
 
     run = run_planner(command, problem_bytes, timeout=args.timeout,
                       output_cap=DEFAULT_OUTPUT_CAP)
     messages = solver_messages(run)
-    report, status, verdict = _validate(run, si, args.strict)
+    report, status, verdict = _validate(run, setup, args.strict)
 
     pdf = None
     if not args.noviz:
@@ -307,7 +306,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         import json  # only for -json
         shown = problem.system_name if kinoplan else vehicle
         out = json.dumps(report_json(shown, args.strict, report, run, status, pdf,
-                                     si.system.kinodynamic), allow_nan=False) + "\n"
+                                     setup.system.kinodynamic), allow_nan=False) + "\n"
     else:
         out = "".join(f"{message}\n" for message in messages)
         out += report_text(report) if report is not None else f"{verdict}\n"

@@ -1,6 +1,6 @@
 """What the tree planners ask of a nearest-neighbour structure, as one base class.
 
-RRT and RG-RRT hold whichever structure their SpaceInformation makes (the grid's
+Planners hold whichever structure their SpaceInformation makes (the grid's
 quadtree by position, the kd-tree by a metric). Compiled (mypyc), a method call on
 an untyped object goes through the method's Python wrapper, its arguments checked
 and converted each time; typed as this base class, the call is native, to the
@@ -21,4 +21,8 @@ class NearestIndex:
 
     def nearest(self, query: Any) -> int:
         """Index of the nearest inserted state (ties: the earliest)."""
+        raise NotImplementedError
+
+    def k_nearest(self, query: Any, k: int) -> list[int]:
+        """Indices of the ``k`` nearest inserted states, nearest first."""
         raise NotImplementedError

@@ -22,3 +22,11 @@ class Vehicle(str, Enum):
     @property
     def is_spaceship(self) -> bool:
         return self.system.kinodynamic
+
+    @property
+    def flags(self) -> tuple[str, ...]:
+        """The command-line flags that name it (``./run.sh`` and ``rrt-validator``)."""
+        return _FLAGS[self.value]
+
+
+_FLAGS = {"point": (), "spaceship": ("-grad",), "left": ("-grad", "-left")}

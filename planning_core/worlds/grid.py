@@ -93,11 +93,11 @@ class GridWorld:
         return not cells_joined(self.problem, (int(a[0]), int(a[1])), (int(b[0]), int(b[1])),
                                 diagonal=True, stop=stop)
 
-    def distance_along_cells(self, stop: Stop = None):
-        """Position -> distance to the problem's goal along the free cells (a
+    def distance_along_cells(self, goal: Sequence[float], stop: Stop = None):
+        """Position -> distance to the point ``goal`` along the free cells (a
         heuristic; :class:`~planning_core.worlds.grid_distance.CellDistanceToGoal`)."""
         from planning_core.worlds.grid_distance import CellDistanceToGoal
-        return CellDistanceToGoal(self.problem, stop=stop)
+        return CellDistanceToGoal(self.problem, (goal[0], goal[1]), stop=stop)
 
     def frontier(self):
         """An empty :class:`~planning_core.worlds.grid_frontier.FrontierCells` of this map."""

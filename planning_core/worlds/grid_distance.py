@@ -45,14 +45,15 @@ class CellDistanceToGoal:
     per cell a double (its distance) and a byte (its way), 9 bytes a cell.
     ``stop`` is asked every POLL_EVERY heap pops (:mod:`planning_core.interrupt`)."""
 
-    def __init__(self, problem: Problem, unreachable: float = 1e12, stop: Stop = None):
+    def __init__(self, problem: Problem, goal: tuple[float, float], unreachable: float = 1e12,
+                 stop: Stop = None):
         width, height = problem.width, problem.height
         blocked = bytes(problem.blocked)  # typed: compiled, the search indexes it natively
         self.width: int = width
         self.height: int = height
-        self.goal = problem.goal
+        self.goal = goal
         self.unreachable = unreachable
-        gx, gy = problem.goal
+        gx, gy = goal
         self.goal_cell = int(gy) * width + int(gx)
         self.cell_distance = array("d", [math.inf]) * (width * height)
         self._way = bytearray(width * height)

@@ -108,9 +108,9 @@ def guarded(solve):
     and no edges, 0 iterations and nodes, and the seconds since ``stop`` began."""
 
     @functools.wraps(solve)
-    def run(si, stop: StopCondition, rng, *params, **named) -> PlanResult:
+    def run(si, pdef, stop: StopCondition, rng, *params, **named) -> PlanResult:
         try:
-            return solve(si, stop, rng, *params, **named)
+            return solve(si, pdef, stop, rng, *params, **named)
         except Interrupted:
             status, message = PlanStatus.TIME_LIMIT, SETUP_CUT_SHORT
         except MemoryError:

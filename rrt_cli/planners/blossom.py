@@ -10,8 +10,9 @@ nearest the target becomes the new node. Holding each control as long as it
 stays valid makes long, cheap strides across open space; the search ends at the
 first node in the goal region.
 
-Grid vehicles (the spaceship) hold a control for one whole step, so blossom does
-not plan for them: RRT with ``controls_per_extension = b`` is the same idea there.
+The grid's ships hold a control for one whole step (their space information has
+no ``advance``), so blossom does not plan for them: RRT with
+``controls_per_extension = b`` is the same idea there.
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ import random
 import time
 from dataclasses import dataclass
 
+from planning_core.problem_definition import ProblemDefinition
+from planning_core.space_information import ControlSpaceInformation
 from rrt_cli.planners import rrt
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 
@@ -49,14 +52,16 @@ Params = BlossomParams
 
 
 @guarded
-def solve(si, stop: StopCondition, rng: random.Random,
-          params: BlossomParams = BlossomParams()) -> PlanResult:
+def solve(si: ControlSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: BlossomParams = BlossomParams()) -> PlanResult:
     system = si.system
-    if not system.kinodynamic or not hasattr(system, "kmax"):
-        raise ValueError("blossom plans for the kinodynamic family systems only")
+    if getattr(si, "advance", None) is None:
+        raise ValueError("blossom plans for systems whose controls are held K slices "
+                         "(the kinodynamic family systems) only")
     began = time.perf_counter()
     grow = _blossom(si, params.b, system.kmin, params.kmax or system.kmax)
-    return rrt.grow(si, stop, rng, grow, params.goal_bias, began)
+    return rrt.grow(si, pdef, stop, rng, grow, params.goal_bias, began)
+
 
 def _blossom(si, b: int, kmin: int, kmax: int):
     """``grow(state, target, rng) -> (end, control) | None``: the best of ``b``

@@ -20,36 +20,35 @@ grid cell, the motions that end in it. Each iteration:
    newest ones (with probability ``goal_bias``, instead, the motion closest to
    the goal among the ``close_samples`` closest, whose recorded distance is then
    inflated so that the others get their turn);
-3. applies one random control (theta uniform over the vehicle's range, thrust
-   uniform in ``[0, 0.5]``) for a random number of steps in ``[min_steps,
-   max_steps]``, as long as every slice is collision-free (a goal-biased
-   expansion instead holds, for one step, the best of ``goal_controls`` random
+3. applies one random control for a random duration, as long as every slice
+   is valid (``si.random_motion``: on the grid's ships a control held for 1 to
+   10 steps, in the family a control held for K in [KMIN, KMAX] slices; a
+   goal-biased expansion instead holds the best of ``goal_controls`` random
    controls toward the goal: a departure from the paper, see
    ``KPIECEParams.goal_controls``; ``goal_controls=1`` restores it);
 4. adds the motion if it is "interesting" (it reaches a new cell or a cell with
    less than two thirds of the average coverage, else with probability 0.05),
    then rewards or penalises the start cell.
 
-The output format holds one control for exactly one step per tree edge (SPEC 2),
-so a motion of ``k`` steps becomes ``k`` chained tree nodes, each filed in the
-cell of its own state (OMPL splits motions at cell boundaries to the same end).
-A node in the goal region ends the search.
+The grid's output format holds one control for exactly one step per tree edge
+(SPEC 2), so there a motion of ``k`` steps becomes ``k`` chained tree nodes, each
+filed in the cell of its own state (OMPL splits motions at cell boundaries to the
+same end); in the family a motion is one node. A node in the goal region ends the
+search.
 
 The second departure: "distance to goal" (cell scores, close motions, goal
-steering) is by default measured along the free cells of the map
-(``KPIECEParams.goal_distance``), not in a straight line, so on a maze the
-search is drawn along the corridors that lead to the goal rather than into the
-wall nearest it. OMPL leaves this to the goal's own distance function, which is
-ours to define; ``goal_distance="euclidean"`` restores the straight line. The
-goal test itself is always the straight-line 0.1 of SPEC 2.
+steering) is by default measured along free space where the world offers it
+(``KPIECEParams.goal_distance``; the grid's free cells), not in a straight line,
+so on a maze the search is drawn along the corridors that lead to the goal rather
+than into the wall nearest it. OMPL leaves this to the goal's own distance
+function, which is ours to define; ``goal_distance="euclidean"`` (and every
+family problem: there are no cells to walk) takes the goal's own distance. The
+goal test itself is always the goal region's.
 
-Kinoplan systems (SPEC 5) use the same search with three differences: the grid
-projects on the system's ``projection_names`` (``cells_per_axis`` cells over each
-one's bounds; the pendulum (theta, omega), the cars (x, y)); a motion is one
-node, a random control held for a random K in [KMIN, KMAX] and cut at the first
-invalid slice, kept when at least KMIN slices were valid (``si.random_motion``,
-as OMPL's propagateWhileValid); and the goal distance is the goal region's
-metric (there are no cells to walk). docs/planners-family.md has the measurements.
+The grid is laid over ``si.projection()`` (as OMPL's default projection of a state
+space): the grid's ships project on position and velocity, the family's systems
+on their ``projection_names`` (the pendulum (theta, omega), the cars (x, y)).
+docs/planners-family.md has the family's measurements.
 
 The design follows OMPL's ``control::KPIECE1`` (read for ideas, not copied).
 """
@@ -65,8 +64,9 @@ from typing import TYPE_CHECKING, Any, Final, Optional, cast
 
 from planning_core.heap import HeapEntry, heap_pop, heap_push, heapify
 from planning_core.interrupt import Stop
-from planning_core.samplers import gauss, randint, uniform
-from planning_core.space_information import AnySpaceInformation
+from planning_core.problem_definition import ProblemDefinition
+from planning_core.samplers import gauss, uniform
+from planning_core.space_information import ControlSpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
 
@@ -85,14 +85,10 @@ _EPSILON: Final = sys.float_info.epsilon
 
 @dataclass(frozen=True)
 class KPIECEParams:
-    """KPIECE1's settings (``-planner kpiece``)."""
+    """KPIECE1's settings (``-planner kpiece``). The projection and a random
+    motion's duration are the space information's (``si.projection``,
+    ``si.random_motion``), as in OMPL."""
 
-    cell_size: float | None = None
-    """Side of a projection cell in map units. None: half a map cell on maps under
-    20 cells a side, one map cell (a maze corridor's width) on larger ones."""
-    velocity_cell_size: float | None = 0.2
-    """With a value, the projection is position and velocity, velocities binned at
-    this size (map units per step); None: the position only."""
     goal_bias: float = 0.05
     """Probability of expanding the motion closest to the goal instead of a
     cell's motion (OMPL's default, 0.05)."""
@@ -104,22 +100,16 @@ class KPIECEParams:
     """A cell's score is multiplied by this after a failed expansion."""
     close_samples: int = 30
     """How many motions closest to the goal are kept for the goal bias."""
-    min_steps: int = 1
-    """Fewest steps (one step = one timestep of 20 slices) a kept motion has."""
-    max_steps: int = 10
-    """Most steps a random control is held for."""
     prune_uninteresting: bool = True
     """Drop 95 % of the motions that only reach well-covered cells (as OMPL does)."""
     goal_controls: int = 10
-    """Controls tried in a goal-biased expansion, each held for one step, the valid
-    one ending nearest the goal kept; 1 is the published algorithm (one random control)."""
+    """Controls tried in a goal-biased expansion (each as ``si.sample_control`` draws
+    it), the valid one ending nearest the goal kept; 1 is the published algorithm."""
 
     goal_distance: str = "cells"
     """"cells": distance to the goal along free space, where the world offers it
-    (cell scores, close motions, goal steering); "euclidean": the straight line (the paper's)."""
-    cells_per_axis: int = 64
-    """Kinoplan systems: each projected variable's bounds cut into this many cells
-    (the system's ``projection_names``, docs/planners-family.md)."""
+    (cell scores, close motions, goal steering); "euclidean": the goal's own distance
+    (the paper's)."""
 
     def __post_init__(self):
         if self.goal_distance not in ("euclidean", "cells"):
@@ -129,21 +119,9 @@ class KPIECEParams:
                 raise ValueError(f"{name} must be in (0, 1]")
         if self.goal_controls < 1:
             raise ValueError("goal_controls must be at least 1")
-        if self.cells_per_axis < 1:
-            raise ValueError("cells_per_axis must be at least 1")
-        if not 1 <= self.min_steps <= self.max_steps:
-            raise ValueError("need 1 <= min_steps <= max_steps")
-        for name in ("cell_size", "velocity_cell_size"):
-            value = getattr(self, name)
-            if value is not None and not value > 0.0:
-                raise ValueError(f"{name} must be positive")
 
 
 Params = KPIECEParams
-
-
-def derived_cell_size(width: float, height: float) -> float:
-    return 0.5 if max(width, height) < 20 else 1.0
 
 
 class _Cell:
@@ -329,19 +307,21 @@ def _bisect(items: list, item) -> int:
 class _Search(TreeSearch):
     """One KPIECE1 run: the tree, the projection grid and the close-to-goal motions."""
 
-    def __init__(self, si: AnySpaceInformation, rng: random.Random, params: KPIECEParams,
-                 stop: Stop = None):
+    def __init__(self, si: ControlSpaceInformation, pdef: ProblemDefinition,
+                 rng: random.Random, params: KPIECEParams, stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
-        self.project = _make_projection(si, params)
-        self.grid = _CellGrid(len(self.project(si.start)))
+        self.project = si.projection()
+        self.start = pdef.start
+        self.grid = _CellGrid(len(self.project(pdef.start)))
         self.close = _CloseSamples(params.close_samples)
-        self.tree = MotionTree(si.start)
-        self.goal = si.goal
+        self.tree = MotionTree(pdef.start)
+        self.goal = pdef.goal
         self.node_cells: list[_Cell] = []
         self.iterations = 0
         # Position -> distance along the free cells, where the world offers it.
         self.along: Optional[CellDistanceToGoal] = (
-            si.distance_along_free_space(stop) if params.goal_distance == "cells" else None)
+            si.distance_along_free_space(pdef.goal, stop) if params.goal_distance == "cells"
+            else None)
 
     def goal_distance(self, state: Sequence[float]) -> float:
         """The distance to the goal that scores cells and ranks close motions."""
@@ -380,24 +360,15 @@ class _Search(TreeSearch):
         return motions[max(0, len(motions) - 1 - back)], cell, False
 
     def motion(self, state, steering: bool) -> tuple[object, list]:
-        """A control and the valid one-step states it leads through (maybe none)."""
-        si, rng, params = self.si, self.rng, self.params
+        """A control and the valid states of the nodes it makes (maybe none)."""
+        si, rng = self.si, self.rng
         if steering:
-            control = _steer_to_goal(si, state, self.goal_distance, params.goal_controls, rng)
-            wanted = 1 if control is not None else 0
-        elif si.duration is not None:
-            motion = si.random_motion(state, rng)  # one node, K slices (kinoplan)
-            return (None, []) if motion is None else (motion[1], [motion[0]])
-        else:
-            control = si.sample_control(rng)
-            wanted = randint(rng, params.min_steps, params.max_steps)
-        steps = []
-        for _ in range(wanted):
-            state = si.propagate_valid(state, control)
-            if state is None:
-                break
-            steps.append(state)
-        return control, steps
+            control = _steer_to_goal(si, state, self.goal_distance,
+                                     self.params.goal_controls, rng)
+            end = None if control is None else si.propagate_valid(state, control)
+            return control, ([] if end is None else [end])
+        motion = si.random_motion(state, rng)
+        return (None, []) if motion is None else motion
 
     def interesting(self, keys: list[object]) -> bool:
         """The motion reaches a new cell or one with under 2/3 of the average coverage."""
@@ -422,8 +393,8 @@ class _Search(TreeSearch):
 
     def begin(self) -> None:
         """File the start in its cell and among the close motions."""
-        start_distance = self.goal_distance(self.si.start)
-        self.file_node(0, _cell_key(self.project(self.si.start)), start_distance)
+        start_distance = self.goal_distance(self.start)
+        self.file_node(0, _cell_key(self.project(self.start)), start_distance)
         self.close.consider(0, start_distance)
 
     def iterate(self) -> int | None:
@@ -432,7 +403,7 @@ class _Search(TreeSearch):
         self.iterations += 1
         node, cell, steering = self.pick()
         control, steps = self.motion(self.tree.states[node], steering)
-        if len(steps) >= (1 if steering else params.min_steps):
+        if steps:
             keys = [_cell_key(self.project(s)) for s in steps]
             # A step steered to the goal is kept whatever the coverage: it is
             # there to close in on the goal, not to explore.
@@ -450,61 +421,13 @@ class _Search(TreeSearch):
 
 
 @guarded
-def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
-          params: KPIECEParams = KPIECEParams()) -> PlanResult:
-    return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "KPIECE1")
+def solve(si: ControlSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: KPIECEParams = KPIECEParams()) -> PlanResult:
+    return run_tree_search(si, pdef, stop,
+                           lambda: _Search(si, pdef, rng, params, stop.time_is_up), "KPIECE1")
 
 
-def _make_projection(si, params: KPIECEParams):
-    """The grid's projection: on a kinoplan system, its own axes
-    (``projection_axes``); on a grid map, the position (and the velocity) in cells
-    of ``cell_size``."""
-    if si.duration is not None:
-        return _AxesProjection(si.system.projection_axes(params.cells_per_axis))
-    world = si.world
-    cell_size = params.cell_size or derived_cell_size(world.width, world.height)
-    return _GridProjection(si.system, 1.0 / cell_size, params.velocity_cell_size)
-
-
-class _AxesProjection:
-    """State -> integer cell coordinates, ``floor((state[index] - low) * scale)`` per
-    ``(index, low, scale)`` axis."""
-
-    def __init__(self, axes: list[tuple[int, float, float]]) -> None:
-        self.indices = [index for index, _, _ in axes]
-        self.lows = [low for _, low, _ in axes]
-        self.scales = [scale for _, _, scale in axes]
-
-    def __call__(self, state: Sequence[float]) -> tuple[int, ...]:
-        indices, lows, scales = self.indices, self.lows, self.scales
-        return tuple([math.floor((state[indices[k]] - lows[k]) * scales[k])
-                      for k in range(len(indices))])
-
-
-class _GridProjection:
-    """State -> integer cell coordinates of its position (and velocity)."""
-
-    def __init__(self, system: Any, inverse_cell: float, velocity_cell_size: float | None):
-        self.px: int = system.position_indices[0]
-        self.py: int = system.position_indices[1]
-        self.inverse_cell = inverse_cell
-        self.with_velocity = velocity_cell_size is not None and bool(system.velocity_indices)
-        self.vx: int = system.velocity_indices[0] if self.with_velocity else 0
-        self.vy: int = system.velocity_indices[1] if self.with_velocity else 0
-        self.inverse_velocity = 1.0 / velocity_cell_size if velocity_cell_size else 0.0
-
-    def __call__(self, state: Sequence[float]) -> tuple[int, ...]:
-        inverse_cell = self.inverse_cell
-        x = math.floor(state[self.px] * inverse_cell)
-        y = math.floor(state[self.py] * inverse_cell)
-        if not self.with_velocity:
-            return (x, y)
-        inverse_velocity = self.inverse_velocity
-        return (x, y, math.floor(state[self.vx] * inverse_velocity),
-                math.floor(state[self.vy] * inverse_velocity))
-
-
-def _steer_to_goal(si: AnySpaceInformation, state, goal_distance, tries: int,
+def _steer_to_goal(si: ControlSpaceInformation, state, goal_distance, tries: int,
                    rng: random.Random):
     """The valid random control, of ``tries``, whose one step ends with the
     lowest ``goal_distance``."""

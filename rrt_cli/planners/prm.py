@@ -32,10 +32,11 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
-from planning_core.space_information import SpaceInformation
+from planning_core.problem_definition import ProblemDefinition
+from planning_core.space_information import GeometricSpaceInformation
 from rrt_cli.graph_search import astar_search
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, path_length, straight_lines
+from rrt_cli.planners.paths import NO_GOAL_CONFIGURATION, path_length
 
 START, GOAL = 0, 1  # the roadmap's first two vertices
 LAZY_RETRY_GROWTH = 1.1
@@ -62,10 +63,10 @@ Params = PRMParams
 class Roadmap:
     """An undirected graph of valid states joined by free straight motions."""
 
-    def __init__(self, lines):
-        self.lines = lines
-        self.lazy = lines.lazy_edges
-        self.index = lines.new_index()
+    def __init__(self, si: GeometricSpaceInformation):
+        self.si = si
+        self.lazy = si.lazy_edges
+        self.index = si.new_nearest()
         self.states: list[tuple[float, ...]] = []
         self.adjacency: list[list[tuple[int, float]]] = []
         self.edges: dict[tuple[int, int], None] = {}  # in the order added
@@ -85,14 +86,14 @@ class Roadmap:
         self.states.append(state)
         self.adjacency.append([])
         self._component_parent.append(vertex)
-        first_hit, states, lazy = self.lines.first_hit, self.states, self.lazy
+        first_hit, states, lazy = self.si.first_hit, self.states, self.lazy
         for other in candidates:
             if lazy or first_hit(state, states[other]) is None:
                 self.add_edge(vertex, other)
         return vertex
 
     def add_edge(self, a: int, b: int) -> None:
-        cost = self.lines.distance(self.states[a], self.states[b])
+        cost = self.si.distance(self.states[a], self.states[b])
         self.adjacency[a].append((b, cost))
         self.adjacency[b].append((a, cost))
         self.edges[(a, b)] = None
@@ -133,7 +134,7 @@ class Roadmap:
         """The steps ``(path[i], path[i+1])`` whose motion is not free in that
         direction (each step checked once): the first one, or for a lazy roadmap
         all of them (one A* run then rules out every blocked edge it took)."""
-        first_hit, states, checked = self.lines.first_hit, self.states, self.checked
+        first_hit, states, checked = self.si.first_hit, self.states, self.checked
         blocked = []
         for step in zip(path, path[1:]):
             if step in checked:
@@ -150,7 +151,7 @@ class Roadmap:
         """Check each edge at ``vertex`` not checked yet (from it), dropping the
         blocked ones: where a path's step was blocked, the next path would likely
         try a neighbouring edge through the same obstacle (fewer A* runs)."""
-        first_hit, states, checked = self.lines.first_hit, self.states, self.checked
+        first_hit, states, checked = self.si.first_hit, self.states, self.checked
         for other, _ in list(self.adjacency[vertex]):
             if (vertex, other) in checked or (other, vertex) in checked:
                 continue
@@ -161,7 +162,7 @@ class Roadmap:
 
     def shortest_path(self, source: int, target: int) -> list[int] | None:
         """A* with the metric to ``target`` as the heuristic."""
-        distance, states, goal = self.lines.distance, self.states, self.states[target]
+        distance, states, goal = self.si.distance, self.states, self.states[target]
         return astar_search(self.adjacency, source, target,
                             lambda v: distance(states[v], goal))
 
@@ -193,8 +194,8 @@ class Refinement:
     roadmap's path moves in jumps, and one growth that gains nothing says little."""
 
 
-def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Random,
-                      neighbor_count: Callable[[int], int], min_vertices: int,
+def plan_with_roadmap(si: GeometricSpaceInformation, pdef: ProblemDefinition,
+                      stop: StopCondition, rng: random.Random, neighbor_count: Callable[[int], int], min_vertices: int,
                       refinement: Refinement, name: str) -> PlanResult:
     """Grow a roadmap until it answers the start-goal query or ``stop`` ends it.
 
@@ -208,10 +209,9 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
     if si.system.kinodynamic:
         raise ValueError(f"{name} plans for geometric systems only")
     began = time.perf_counter()
-    lines = straight_lines(si)
-    roadmap = Roadmap(lines)
-    goal = lines.goal_configuration(rng)
-    roadmap.add_vertex(si.start, neighbors=0)
+    roadmap = Roadmap(si)
+    goal = si.goal_configuration(pdef.goal, rng)
+    roadmap.add_vertex(pdef.start, neighbors=0)
     if goal is None:
         return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (), PlanStats(
             0, 1, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
@@ -222,13 +222,13 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
         return PlanResult(status, si.system, trajectory, (), roadmap.edge_states(), PlanStats(
             iterations, len(roadmap), time.perf_counter() - began), message)
 
-    if si.goal.reached(si.start):
+    if pdef.goal.reached(pdef.start):
         return result(PlanStatus.SOLVED, [START], 0)
-    if si.goal_certainly_unreachable(stop.time_is_up):
+    if si.certainly_unreachable(pdef.start, pdef.goal, stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, None, 0,
                       "no chain of free cells joins the start and the goal")
 
-    draw_free = lines.roadmap_sampler(rng, stop.time_is_up)
+    draw_free = si.roadmap_sampler(rng, stop.time_is_up)
     iterations = 0
     solution: list[int] | None = None
     next_query, first_try = 0, min_vertices
@@ -249,8 +249,8 @@ def plan_with_roadmap(si: SpaceInformation, stop: StopCondition, rng: random.Ran
                         return result(PlanStatus.SOLVED, solution, iterations)
         elif len(roadmap) >= next_query:
             shorter = _query(roadmap, stop) or solution
-            gain = 1.0 - (path_length(roadmap.points(shorter), lines.distance)
-                          / path_length(roadmap.points(solution), lines.distance))
+            gain = 1.0 - (path_length(roadmap.points(shorter), si.distance)
+                          / path_length(roadmap.points(solution), si.distance))
             solution = shorter
             next_query = math.ceil(len(roadmap) * refinement.growth)
             if (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
@@ -288,7 +288,7 @@ def _query(roadmap: Roadmap, stop: StopCondition) -> list[int] | None:
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
-          params: PRMParams = PRMParams()) -> PlanResult:
-    return plan_with_roadmap(si, stop, rng, lambda n: params.neighbors, params.min_vertices,
+def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: PRMParams = PRMParams()) -> PlanResult:
+    return plan_with_roadmap(si, pdef, stop, rng, lambda n: params.neighbors, params.min_vertices,
                              Refinement(), "prm")

@@ -30,9 +30,9 @@ import math
 import random
 from dataclasses import dataclass
 
-from planning_core.space_information import SpaceInformation
+from planning_core.problem_definition import ProblemDefinition
+from planning_core.space_information import GeometricSpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
-from rrt_cli.planners.point_common import straight_lines
 from rrt_cli.planners.prm import Refinement, plan_with_roadmap
 
 DIMENSION = 2
@@ -77,14 +77,14 @@ def log_neighbor_count(vertices: int) -> int:
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
-          params: PRMStarParams = PRMStarParams()) -> PlanResult:
+def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: PRMStarParams = PRMStarParams()) -> PlanResult:
     refinement = Refinement(params.growth_after_connection, params.min_improvement,
                             params.max_refined_vertices, params.min_refined_vertices)
     if params.log_neighbors:
         neighbor_count = log_neighbor_count
     else:
-        dimension = straight_lines(si).dimension
+        dimension = si.dimension
         neighbor_count = functools.partial(star_neighbor_count, dimension=dimension)
-    return plan_with_roadmap(si, stop, rng, neighbor_count, params.min_vertices,
+    return plan_with_roadmap(si, pdef, stop, rng, neighbor_count, params.min_vertices,
                              refinement, "prmstar")

@@ -44,35 +44,38 @@ A second departure (``goal_controls``): a node the goal is within one step's
 reach of also gets a few random controls in its reachable set, as the fixed
 full-thrust steps tend to jump over the small goal disc.
 
-Kinoplan systems (SPEC 5): a node's fixed reachable set is every combination of
-``levels`` values of each held control (2: its bounds) held for
-``reach_seconds`` (the system's ``reachable_controls``), and "closest" is the
-problem's metric over whole states (``si.closeness``); the goal is within one
-step's reach of a node when it is no farther than the node's farthest fixed
-reachable state. docs/planners-family.md lists each system's set.
+The fixed set of controls is the space information's (``si.reachable_controls``:
+the grid's ships coast and thrust at 8 angles; a family system takes every
+combination of its held controls' bounds, held 0.5 s), and so is "closest"
+(``si.closeness``: by position on the grid, the metric over whole states in the
+family) and "within one step's reach" (``si.step_reach``: the ship's speed plus
+its thrust; a family node's farthest fixed reachable state).
+docs/planners-family.md lists each system's set.
 
 Reachable states live in ``si.new_nearest()`` (the grid: a quadtree by position;
-kinoplan: a kd-tree by the metric); each point's index maps to its node and control.
+the family: a kd-tree by the metric); each point's index maps to its node and control.
 """
 
 from __future__ import annotations
 
 import random
 from dataclasses import dataclass
-from typing import Any, Final
+from typing import Any
 
 from planning_core.heap import HeapEntry, heap_pop, heap_push
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
+from planning_core.problem_definition import ProblemDefinition
 from planning_core.samplers import uniform
-from planning_core.space_information import AnySpaceInformation
+from planning_core.space_information import ControlSpaceInformation
 from rrt_cli.planners.base import PlanResult, StopCondition, guarded
 from rrt_cli.planners.tree import MotionTree, TreeSearch, run_tree_search
 
 
 @dataclass(frozen=True)
 class RGRRTParams:
-    """RG-RRT's settings (``-planner rgrrt``)."""
+    """RG-RRT's settings (``-planner rgrrt``). The fixed reachable set is the space
+    information's (``si.reachable_controls``)."""
 
     goal_bias: float = 0.05
     """Probability that the random target is the goal (as RRT's, SPEC 2)."""
@@ -82,22 +85,11 @@ class RGRRTParams:
     guide_by_stopping_point: bool = True
     """The best-first step ranks a state by the distance along free space of where
     full braking would stop it (a braking line into a wall ranks last); False: by its position."""
-    angles: int = 8
-    """Thrust directions in each node's reachable set, evenly spaced from straight
-    ahead over the system's theta range (a half turn closed at both ends: full braking included)."""
-    thrusts: tuple[float, ...] = (0.5,)
-    """Thrust magnitudes used at every angle; coasting is always in the set too."""
     goal_controls: int = 10
     """Random controls added to the reachable set of a node the goal is within one
     step's reach of (the fixed set tends to jump over the goal disc); 0 is the paper."""
     random_controls: int = 0
     """Extra random controls per node, drawn once when it is added; 0 is the paper."""
-    levels: int = 2
-    """Kinoplan systems: each held control at this many evenly spaced values over its
-    bounds, every combination in the reachable set (2: the corners of the control box)."""
-    reach_seconds: float = 0.5
-    """Kinoplan systems: how long each control of the reachable set is held (K is
-    this over DT, rounded, within [KMIN, KMAX])."""
 
     goal_distance: str = "cells"
     """"cells": ``guided_share`` of the iterations add the unused reachable state
@@ -109,15 +101,9 @@ class RGRRTParams:
         for name in ("goal_bias", "guided_share"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise ValueError(f"{name} must be in [0, 1]")
-        if self.angles < 1 or self.levels < 1:
-            raise ValueError("angles and levels must be at least 1")
-        if not self.reach_seconds > 0.0:
-            raise ValueError("reach_seconds must be positive")
         for name in ("random_controls", "goal_controls"):
             if getattr(self, name) < 0:
                 raise ValueError(f"{name} must be non-negative")
-        if not all(thrust > 0.0 for thrust in self.thrusts):
-            raise ValueError("thrusts must be positive")
 
 
 Params = RGRRTParams
@@ -164,34 +150,32 @@ class _ReachableSets:
 class _Search(TreeSearch):
     """One RG-RRT run: the tree, the reachable sets and the best-first queue."""
 
-    def __init__(self, si: AnySpaceInformation, rng: random.Random, params: RGRRTParams,
-                 stop: Stop = None):
+    def __init__(self, si: ControlSpaceInformation, pdef: ProblemDefinition,
+                 rng: random.Random, params: RGRRTParams, stop: Stop = None):
         self.si, self.rng, self.params = si, rng, params
-        self.fixed_controls = _fixed_controls(si, params)
-        self.tree = MotionTree(si.start)
+        self.goal = pdef.goal
+        self.fixed_controls = si.reachable_controls()
+        self.tree = MotionTree(pdef.start)
         self.reach = _ReachableSets(si)
         self.iterations = 0
-        along: Any = si.distance_along_free_space(stop) if params.goal_distance == "cells" else None
+        along: Any = (si.distance_along_free_space(pdef.goal, stop)
+                      if params.goal_distance == "cells" else None)
         self.guided = along is not None
         # Every reachable state by its distance to the goal; used ones are skipped
         # when they come to the top.
         self.by_distance: list[HeapEntry] = []  # (distance, reachable state)
         if self.guided:
-            self.guide_key = (stopping_point_key(along, si) if params.guide_by_stopping_point
-                              else lambda state: along(state[0], state[1]))
+            key = si.stopping_point_key(along) if params.guide_by_stopping_point else None
+            self.guide_key = key or (lambda state: along(state[0], state[1]))
 
     def random_controls(self, state, ends: list) -> list:
         """Random controls for the node: ``random_controls``, and ``goal_controls``
-        more when the goal is within one step's reach (a grid vehicle's
-        ``step_reach``; a kinoplan node's farthest fixed reachable state)."""
+        more when the goal is within one step's reach (``si.step_reach``)."""
         params, si = self.params, self.si
         extra = params.random_controls
         if params.goal_controls:
-            if si.duration is None:
-                reach = si.system.step_reach(state)
-            else:
-                reach = max((si.closeness(state, end) for end in ends), default=0.0)
-            if si.goal.distance(state) <= reach:
+            reach = si.step_reach(state, ends)
+            if self.goal.distance(state) <= reach:
                 extra += params.goal_controls
         return [si.sample_control(self.rng) for _ in range(extra)]
 
@@ -217,7 +201,7 @@ class _Search(TreeSearch):
         end = si.propagate_valid(state, control)
         if end is None or end == state:
             return None  # (coasting at rest goes nowhere: no duplicate node)
-        if si.goal.reached(end):
+        if self.goal.reached(end):
             return self.tree.add(node, end, control)
         ends.append(end)
         chosen = self.reach.add(node, end, control)
@@ -274,7 +258,7 @@ class _Search(TreeSearch):
             chosen = self.best_first()
         else:
             if uniform(rng) < params.goal_bias:
-                target = self.si.goal_target(rng)
+                target = self.si.goal_target(self.goal, rng)
             else:
                 target = self.si.sample_target(rng)
             chosen = self.toward(target)
@@ -282,37 +266,7 @@ class _Search(TreeSearch):
 
 
 @guarded
-def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
-          params: RGRRTParams = RGRRTParams()) -> PlanResult:
-    return run_tree_search(si, stop, lambda: _Search(si, rng, params, stop.time_is_up), "RG-RRT")
-
-
-def _fixed_controls(si, params: RGRRTParams) -> list:
-    """The reachable set's controls: a grid vehicle's own (coasting and thrusts at
-    ``angles``); a kinoplan system's ``levels`` values per control, held ``reach_seconds``."""
-    if si.duration is None:
-        return si.system.reachable_controls(params.angles, params.thrusts)
-    kmin, kmax = si.duration
-    k = min(max(round(params.reach_seconds / si.system.dt), kmin), kmax)
-    return si.system.reachable_controls(params.levels, k)
-
-
-# Ranks a braking line that meets a blocked cell after every free one (well below
-# the distance's "unreachable", so those still order among themselves).
-_BLOCKED_BRAKING_PENALTY: Final = 1e6
-
-
-def stopping_point_key(along, si: AnySpaceInformation):
-    """State -> distance to the goal along free space of where full braking would
-    stop it (:meth:`stopping_point` of the system)."""
-    stopping_point, first_hit = si.system.stopping_point, si.first_hit
-    unreachable = along.unreachable
-
-    def key(state) -> float:
-        stop_at = stopping_point(state)
-        distance = along(stop_at[0], stop_at[1])
-        if distance >= unreachable or first_hit(state, stop_at) is not None:
-            return along(state[0], state[1]) + _BLOCKED_BRAKING_PENALTY
-        return distance
-
-    return key
+def solve(si: ControlSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: RGRRTParams = RGRRTParams()) -> PlanResult:
+    return run_tree_search(si, pdef, stop,
+                           lambda: _Search(si, pdef, rng, params, stop.time_is_up), "RG-RRT")

@@ -3,8 +3,8 @@ planning"), as the course's reference planner runs it, for any system.
 
 Each iteration draws a target (the goal with probability ``goal_bias``, else
 ``si.sample_target``: a uniform point of the map, or a uniform state of a
-kinoplan system's space), finds the tree node nearest to it (``si.new_nearest``:
-by position on the grid, by the metric for kinoplan) and extends that node
+family system's space), finds the tree node nearest to it (``si.new_nearest``:
+by position on the grid, by the metric in the family) and extends that node
 toward it with the system's steering (straight lines for a geometric system, the
 best of random controls for a kinodynamic one). The search ends at the first
 node in the goal region, like OMPL's RRT with its default "stop at first
@@ -13,15 +13,13 @@ solution".
 
 from __future__ import annotations
 
-import dataclasses
 import random
 import time
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable, Optional
 
 from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
-from planning_core.space_information import AnySpaceInformation
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
@@ -33,48 +31,45 @@ class RRTParams:
 
     goal_bias: float = 0.05
     """Probability that the random target is the goal (SPEC 2: 0.05)."""
-    controls_per_extension: int = 10
-    """Kinodynamic systems: random controls tried per extension; the closest valid one wins."""
+    controls_per_extension: Optional[int] = None
+    """Kinodynamic systems: random controls tried per extension, the closest valid one
+    wins; None: the space information's (the grid's ships 10, the family 1)."""
     partial_extension: bool = True
     """Geometric systems: when the segment to the target is blocked, go as far as it is
     free instead of adding nothing (the reference adds nothing; this is what makes
     mazes tractable)."""
     min_extension: float = 0.01
     """Geometric systems: a partial extension shorter than this adds no node."""
-    kinoplan_controls: int = 1
-    """Kinoplan systems' ``controls_per_extension`` (1, as OMPL's control RRT, beat 10
-    on every family problem: docs/planners-family.md)."""
-    wall_clearance: float = 1.0
+    wall_clearance: Optional[float] = None
     """Geometric systems: a partial extension stops this far short of the first
-    invalid state (a node pressed against a wall fails every extension toward
-    the targets behind it; docs/parameter-history.md)."""
+    invalid state (a node pressed against a wall fails every extension toward the
+    targets behind it; docs/parameter-history.md); None: the space information's
+    (the grid: a map unit; the family: one check step)."""
 
 
 @guarded
-def solve(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
+def solve(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
     began = time.perf_counter()
-    if si.duration is not None:  # a kinoplan system
-        params = dataclasses.replace(params, controls_per_extension=params.kinoplan_controls)
     steering = make_steering(si, params)
-    return grow(si, stop, rng, steering.extend, params.goal_bias, began)
+    return grow(si, pdef, stop, rng, steering.extend, params.goal_bias, began)
 
 
-def grow(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
+def grow(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
          extend: Callable, goal_bias: float, began: float) -> PlanResult:
     """RRT's loop with ``extend(state, target, rng) -> (state, control) | None`` as
     its steering, until a node reaches the goal or ``stop`` says so (blossom RRT is
     this loop with its own steering)."""
-    goal = si.goal
-    tree = MotionTree(si.start)
+    goal = pdef.goal
+    tree = MotionTree(pdef.start)
     index: NearestIndex = si.new_nearest()  # typed: native calls (nearest/index.py)
-    index.add(si.start)
+    index.add(pdef.start)
     system = si.system
 
-    solved = start_in_goal(si, tree, began)
+    solved = start_in_goal(si, pdef, tree, began)
     if solved is not None:
         return solved
-    if si.goal_certainly_unreachable(stop.time_is_up):
+    if si.certainly_unreachable(pdef.start, goal, stop.time_is_up):
         return tree.result(system, PlanStatus.UNREACHABLE, None, 0, began,
                            "no chain of free cells joins the start and the goal")
 
@@ -85,7 +80,7 @@ def grow(si: AnySpaceInformation, stop: StopCondition, rng: random.Random,
         if limit is not None:
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
-        target = goal_target(rng) if uniform(rng) < goal_bias else sample_target(rng)
+        target = goal_target(goal, rng) if uniform(rng) < goal_bias else sample_target(rng)
         near = index.nearest(target)
         step = extend(states[near], target, rng)
         if step is None:

@@ -16,12 +16,14 @@ blocked step goes as far as it is free. The goal tree's motions are checked in
 the direction the path will travel them (toward the goal). The goal tree's root
 is the goal itself (``goal_configuration``), so the path ends exactly there.
 
-The paper draws targets uniformly; here, by default, 90% come from the trees'
-frontier (free cells without a node beside cells with one,
-:mod:`planning_core.worlds.grid_frontier`), which in a maze is what keeps the trees
-advancing: see ``RRTConnectParams.frontier_targets`` (0 restores the paper).
-The geometric family has no frontier: its targets are uniform configurations, valid
-or not (``kinoplan_free_space_targets``).
+The paper draws targets uniformly; here, where the world offers a frontier (the
+grid: free cells without a node beside cells with one,
+:mod:`planning_core.worlds.grid_frontier`), 90% of them come from it by default,
+which in a maze is what keeps the trees advancing: see
+``RRTConnectParams.frontier_targets`` (0 restores the paper). The rest are
+uniform, over free space or over the whole space (``free_space_targets``; by
+default as the space information prefers: the grid's free cells, the family's
+whole space).
 
 The tree section of the output lists both trees' edges, goal-tree edges
 pointing toward the goal.
@@ -34,11 +36,14 @@ import time
 from dataclasses import dataclass
 from enum import Enum
 
-from planning_core.space_information import SpaceInformation
+from typing import Optional
+
+from planning_core.problem_definition import ProblemDefinition
 from planning_core.samplers import uniform
+from planning_core.space_information import GeometricSpaceInformation
 from planning_core.worlds.grid_frontier import FrontierCells
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
-from rrt_cli.planners.point_common import NO_GOAL_CONFIGURATION, straight_lines
+from rrt_cli.planners.paths import NO_GOAL_CONFIGURATION
 from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree
 
@@ -56,16 +61,14 @@ class RRTConnectParams:
     """Connect: the same, for the steps toward the other tree's new node."""
     min_extension: float = 0.01
     """A partial step shorter than this adds no node (counts as trapped)."""
-    wall_clearance: float = 1.0
-    """A partial step stops this far (map units) short of the first blocked cell,
-    as in RRT (see ``RRTParams.wall_clearance``)."""
-    free_space_targets: bool = True
-    """Draw random targets from the free cells only (uniform over free space)
-    instead of the whole map: on crowded maps and mazes most whole-map targets
-    lie inside walls and only feed extensions that stop at the wall."""
-    kinoplan_free_space_targets: bool = False
-    """``free_space_targets`` for the geometric family: off, uniform targets valid or
-    not, as OMPL's (faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
+    wall_clearance: Optional[float] = None
+    """A partial step stops this far short of the first invalid state, as in RRT
+    (see ``RRTParams.wall_clearance``); None: the space information's."""
+    free_space_targets: Optional[bool] = None
+    """Draw random targets from valid states only instead of the whole space; None:
+    as the space information prefers (``si.free_targets``: the grid's free cells,
+    where most whole-map targets of a maze lie in walls; the family's whole space,
+    as OMPL's, faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
     frontier_targets: float = 0.9
     """Share of the random targets drawn from the trees' frontier (free cells with
     no node beside covered ones, where the world offers it); 0 gives the published RRT-Connect."""
@@ -100,9 +103,9 @@ class _Tree(MotionTree):
 class _Grower:
     """Extends a tree one step toward a target (OMPL's growTree)."""
 
-    def __init__(self, si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
-                 frontier: FrontierCells | None):
-        self.lines = straight_lines(si)
+    def __init__(self, si: GeometricSpaceInformation, params: RRTConnectParams,
+                 rng: random.Random, frontier: FrontierCells | None):
+        self.si = si
         self.frontier = frontier
         self.max_step = params.max_step
         self.extend_steering = StraightLineSteering(si, params.partial_extension,
@@ -118,16 +121,16 @@ class _Grower:
         near_state = tree.states[near]
         clipped = False
         if self.max_step > 0.0:
-            distance = self.lines.distance(near_state, target)
+            distance = self.si.distance(near_state, target)
             if distance > self.max_step:
-                target = self.lines.interpolate(near_state, target, self.max_step / distance)
+                target = self.si.interpolate(near_state, target, self.max_step / distance)
                 clipped = True
         steering = self.connect_steering if connecting else self.extend_steering
         step = steering.extend(near_state, target, self.rng)
         if step is None:
             return _Grow.TRAPPED, -1
         new = step[0]
-        if tree.toward_root and self.lines.first_hit(new, near_state) is not None:
+        if tree.toward_root and self.si.first_hit(new, near_state) is not None:
             return _Grow.TRAPPED, -1  # free one way only (a rounding tie, other samples)
         added = tree.add(near, new)
         tree.index.add(new)
@@ -137,12 +140,12 @@ class _Grower:
         return (_Grow.REACHED if reached else _Grow.ADVANCED), added
 
 
-def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.Random,
-                    frontier: FrontierCells | None, stop: StopCondition):
+def _target_sampler(si: GeometricSpaceInformation, params: RRTConnectParams,
+                    rng: random.Random, frontier: FrontierCells | None, stop: StopCondition):
     """Draws targets: the frontier's share, the rest uniform (over free space or the map)."""
-    family = getattr(si, "answers_straight_lines", False)  # a geometric family system
-    if params.kinoplan_free_space_targets if family else params.free_space_targets:
-        draw_uniform_target = straight_lines(si).free_sampler(rng, stop.time_is_up)
+    free = si.free_targets if params.free_space_targets is None else params.free_space_targets
+    if free:
+        draw_uniform_target = si.free_sampler(rng, stop.time_is_up)
     else:
         def draw_uniform_target():
             return si.sample_target(rng)
@@ -160,18 +163,17 @@ def _target_sampler(si: SpaceInformation, params: RRTConnectParams, rng: random.
 
 
 @guarded
-def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
-          params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
+def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
     if si.system.kinodynamic:
         raise ValueError("rrtconnect plans for geometric systems only")
     began = time.perf_counter()
-    lines = straight_lines(si)
-    start, goal = si.start, lines.goal_configuration(rng)
+    start, goal = pdef.start, si.goal_configuration(pdef.goal, rng)
     if goal is None:
         return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (),
                           PlanStats(0, 0, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
-    start_tree = _Tree(start, lines.new_index(), toward_root=False)
-    goal_tree = _Tree(goal, lines.new_index(), toward_root=True)
+    start_tree = _Tree(start, si.new_nearest(), toward_root=False)
+    goal_tree = _Tree(goal, si.new_nearest(), toward_root=True)
 
     def result(status: PlanStatus, path, iterations: int, message: str = ""):
         edges = start_tree.edges() + goal_tree.edges(toward_root=True)
@@ -179,12 +181,12 @@ def solve(si: SpaceInformation, stop: StopCondition, rng: random.Random,
                           time.perf_counter() - began)
         return PlanResult(status, si.system, tuple(path), (), tuple(edges), stats, message)
 
-    if si.goal.reached(start):
+    if pdef.goal.reached(start):
         return result(PlanStatus.SOLVED, [start], 0)
-    if si.goal_certainly_unreachable(stop.time_is_up):
+    if si.certainly_unreachable(start, pdef.goal, stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, (), 0,
                       "no chain of free cells joins the start and the goal")
-    frontier = lines.frontier() if params.frontier_targets > 0.0 else None
+    frontier = si.frontier() if params.frontier_targets > 0.0 else None
     if frontier is not None:
         frontier.cover(start)
         frontier.cover(goal)

@@ -3,34 +3,32 @@
 Geometric systems go straight to the target when the motion is free (checked
 exactly on the grid, at the check step for the geometric family); otherwise,
 with ``partial_extension``, toward the first invalid state, stopping
-``wall_clearance`` short of it (``si``'s clearance: on the grid that many map
-units, for the family one check step). Kinodynamic systems try
-``controls_per_extension`` random controls, each held for one step (kinoplan
-systems: K slices, K drawn with the control); the valid one ending closest to
-the target by ``si.closeness`` wins (SPEC 2: by position on the grid; SPEC 5.3:
-by the metric for kinoplan systems).
+``wall_clearance`` short of it (by default the space information's: on the grid
+a map unit, in the family one check step). Kinodynamic systems try
+``controls_per_extension`` random controls (by default the space information's),
+each held for one step (family systems: K slices, K drawn with the control); the
+valid one ending closest to the target by ``si.closeness`` wins (SPEC 2: by
+position on the grid; SPEC 5.3: by the metric in the family).
 """
 
 from __future__ import annotations
 
 import math
 import random
-from typing import Any, Callable
+from typing import Any, Callable, Optional
 
-from planning_core.space_information import AnySpaceInformation
-from rrt_cli.planners.point_common import straight_lines
+from planning_core.space_information import ControlSpaceInformation, GeometricSpaceInformation
 
 
 class StraightLineSteering:
-    def __init__(self, si: AnySpaceInformation, partial_extension: bool, min_extension: float,
-                 wall_clearance: float):
-        lines = straight_lines(si)
-        self.first_hit, self.can_end_at = lines.first_hit, lines.can_end_at
-        self.distance, self.interpolate = lines.distance, lines.interpolate
-        self.rechecks_prefix = lines.rechecks_prefix
+    def __init__(self, si: GeometricSpaceInformation, partial_extension: bool,
+                 min_extension: float, wall_clearance: Optional[float]):
+        self.first_hit, self.can_end_at = si.first_hit, si.can_end_at
+        self.distance, self.interpolate = si.distance, si.interpolate
+        self.rechecks_prefix = si.rechecks_prefix
         self.partial_extension = partial_extension
         self.min_extension = min_extension
-        self.wall_clearance = lines.clearance(wall_clearance)
+        self.wall_clearance = si.wall_clearance if wall_clearance is None else wall_clearance
 
     def extend(self, state: tuple[float, ...], target: tuple[float, ...],
                rng: random.Random) -> tuple[tuple[float, ...], None] | None:
@@ -52,7 +50,7 @@ class StraightLineSteering:
 
 
 class ControlSamplingSteering:
-    def __init__(self, si: AnySpaceInformation, controls_per_extension: int):
+    def __init__(self, si: ControlSpaceInformation, controls_per_extension: int):
         self.controls_per_extension = controls_per_extension
         # Bound once: this loop is the kinodynamic RRT's hot path (compiled, hot-paths.md).
         self.sample_control: Callable[[random.Random], Any] = si.sample_control
@@ -76,9 +74,10 @@ class ControlSamplingSteering:
         return best
 
 
-def make_steering(si: AnySpaceInformation, params):
+def make_steering(si: Any, params: Any):
     """The steering RRT-like planners use for ``si``'s kind of system."""
     if si.system.kinodynamic:
-        return ControlSamplingSteering(si, params.controls_per_extension)
+        return ControlSamplingSteering(si, params.controls_per_extension
+                                       or si.controls_per_extension)
     return StraightLineSteering(si, params.partial_extension, params.min_extension,
                                 params.wall_clearance)

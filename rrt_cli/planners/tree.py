@@ -79,8 +79,8 @@ class TreeSearch:
         raise NotImplementedError
 
 
-def run_tree_search(si: Any, stop: StopCondition, make_search: Callable[[], TreeSearch],
-                    name: str) -> PlanResult:
+def run_tree_search(si: Any, pdef: Any, stop: StopCondition,
+                    make_search: Callable[[], TreeSearch], name: str) -> PlanResult:
     """The loop of the kinodynamic tree planners: ``make_search()`` sets up (on the
     clock); a start in the goal region is the answer; otherwise ``search.begin()``,
     then ``search.iterate()`` until one returns a goal node, a limit of ``stop``
@@ -91,7 +91,7 @@ def run_tree_search(si: Any, stop: StopCondition, make_search: Callable[[], Tree
     began = time.perf_counter()
     search = make_search()
     tree, system = search.tree, si.system
-    solved = start_in_goal(si, tree, began)
+    solved = start_in_goal(si, pdef, tree, began)
     if solved is not None:
         return solved
     goal_node = search.begin()
@@ -107,13 +107,13 @@ def run_tree_search(si: Any, stop: StopCondition, make_search: Callable[[], Tree
     return tree.result(system, PlanStatus.SOLVED, goal_node, search.iterations, began)
 
 
-def start_in_goal(si, tree: MotionTree, began: float) -> PlanResult | None:
+def start_in_goal(si, pdef, tree: MotionTree, began: float) -> PlanResult | None:
     """The answer when the start is in the goal region: the path of the start alone,
-    with the controls ``si.start_in_goal_controls()`` gives (a kinoplan start may
-    drift out under any held control: then None, plan as usual)."""
-    if not si.goal.reached(si.start):
+    with the controls ``si.stay_controls`` gives a kinodynamic system (a family
+    start may drift out under any held control: then None, plan as usual)."""
+    if not pdef.goal.reached(pdef.start):
         return None
-    controls = si.start_in_goal_controls()
+    controls = si.stay_controls(pdef.start, pdef.goal) if si.system.kinodynamic else ()
     if controls is None:
         return None
     solved = tree.result(si.system, PlanStatus.SOLVED, 0, 0, began)

@@ -16,7 +16,7 @@ from benchmarks.family import FAMILY_DIR  # noqa: E402
 from benchmarks.harness import RunSpec, run_one  # noqa: E402
 from benchmarks.ompl_family import Layout, control_space_information  # noqa: E402
 from planning_core.kinoplan_text import parse_kinoplan  # noqa: E402
-from planning_core.space_information import kinoplan_space_information  # noqa: E402
+from planning_core.setups import kinoplan_setup  # noqa: E402
 from validator.checks import validate_plan  # noqa: E402
 
 
@@ -33,7 +33,7 @@ def _validated(name: str, planner: str, seed: int = 3):
     assert done.returncode == 0, done.stderr
     assert done.stderr.decode().startswith("ompl_planner stats: status=solved")
     problem = parse_kinoplan(text.decode())
-    report = validate_plan(kinoplan_space_information(problem), done.stdout.decode())
+    report = validate_plan(kinoplan_setup(problem), done.stdout.decode())
     assert report.valid, report.first_failure
     return done, report
 

@@ -10,7 +10,7 @@ import pytest
 from benchmarks.family import FAMILY_DIR
 from benchmarks.ompl_cpp_programs import binary, family_input
 from planning_core.kinoplan_text import parse_kinoplan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from validator.checks import validate_plan
 
 
@@ -54,7 +54,7 @@ def test_family_ompl_answers_pass_the_validator(name, planner):
                            capture_output=True, timeout=120) for _ in range(2)]
     assert runs[0].returncode == 0, runs[0].stderr
     assert runs[0].stderr.decode().startswith("ompl_cpp stats: status=solved planning_seconds=")
-    report = validate_plan(kinoplan_space_information(parse_kinoplan(text)),
+    report = validate_plan(kinoplan_setup(parse_kinoplan(text)),
                            runs[0].stdout.decode())
     assert report.valid, report.first_failure
     assert report.trajectory_count >= 2

@@ -9,7 +9,8 @@ import pytest
 
 from benchmarks.generator import PROBLEMS_DIR
 from benchmarks.shortest_path import shortest_lengths, shortest_path
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
+from tests.conftest import solve_on
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
@@ -146,7 +147,7 @@ def test_no_valid_answer_is_shorter(name, path: Path):
     optimum = shortest_path(problem).length
     for seed in range(3):
         planner = PLANNERS[name].load()
-        result = planner.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
+        result = solve_on(planner, grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                random.Random(seed))
         report = validate_output(problem, Vehicle.POINT,
                                  format_plan(result.trajectory, result.tree), strict=True)

@@ -18,7 +18,7 @@ from golden_cases import (FAMILY_QUICK, PROBLEM_DIR, SEEDS, SLOW, argv,  # noqa:
 
 from planning_core.kinoplan_text import parse_kinoplan  # noqa: E402
 from planning_core.problem_text import parse_problem  # noqa: E402
-from planning_core.space_information import kinoplan_space_information  # noqa: E402
+from planning_core.setups import kinoplan_setup  # noqa: E402
 from tests.conftest import run_planner  # noqa: E402
 from tests.test_compiled import run_planner_compiled  # noqa: E402
 from validator.checks import validate_output, validate_plan  # noqa: E402
@@ -49,8 +49,11 @@ def test_every_case_is_recorded():
 @pytest.mark.parametrize("mode, case", list(_params()))
 def test_output_matches_golden(mode, case):
     vehicle, planner, problem, seed = case
-    run = run_planner if mode == "interpreted" else run_planner_compiled
-    done = run(argv(vehicle, planner, seed), (PROBLEM_DIR / problem).read_text(), timeout=900)
+    stdin = (PROBLEM_DIR / problem).read_text()
+    if mode == "interpreted":
+        done = run_planner(argv(vehicle, planner, seed), stdin, timeout=900, interpreted=True)
+    else:
+        done = run_planner_compiled(argv(vehicle, planner, seed), stdin, timeout=900)
     expected = GOLDEN[case_id(*case)]
     assert done.returncode == expected["exit"], done.stderr.decode()
     assert len(done.stdout) == expected["bytes"]
@@ -61,8 +64,7 @@ def test_output_matches_golden(mode, case):
 def _validated(vehicle: str, problem_text: str, output: str) -> bool:
     """The answer passes the validator's checks (strict)."""
     if vehicle.startswith("family"):
-        si = kinoplan_space_information(parse_kinoplan(problem_text))
-        report = validate_plan(si, output)  # the family's -strict is ten times denser than planned
+        report = validate_plan(kinoplan_setup(parse_kinoplan(problem_text)), output)  # the family's -strict is ten times denser than planned
     else:
         report = validate_output(parse_problem(problem_text), VALIDATOR_VEHICLE[vehicle],
                                  output, strict=True)

@@ -68,7 +68,7 @@ PROBE = """
 import atexit, sys
 def report():
     names = ("argparse", "rrt_cli.smoothing", "ast", "weakref", "planning_core.kinoplan",
-             "planning_core.geometric_space_information", "planning_core.nearest.kdtree")
+             "planning_core.family_geometric_space_information", "planning_core.nearest.kdtree")
     sys.stderr.write("loaded: %s\\n" % ",".join(n for n in names if n in sys.modules))
 atexit.register(report)
 """
@@ -90,7 +90,7 @@ def test_run_sh_imports_neither_argparse_nor_smoothing():
 
 
 def test_run_sh_imports_nothing_of_the_family_for_a_grid_problem():
-    assert not {"planning_core.kinoplan", "planning_core.geometric_space_information",
+    assert not {"planning_core.kinoplan", "planning_core.family_geometric_space_information",
                 "planning_core.nearest.kdtree"} & run_sh_start_loads()
 
 

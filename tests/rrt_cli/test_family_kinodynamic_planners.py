@@ -9,7 +9,7 @@ import pytest
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from planning_core.worlds.shapes import place
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import StopCondition
@@ -34,17 +34,17 @@ SMALL = {
 
 
 def solve(planner: str, text: str, seed: int, time_limit: float = 30.0):
-    si = kinoplan_space_information(parse_kinoplan(text))
+    setup = kinoplan_setup(parse_kinoplan(text))
     module = PLANNERS[planner].load()
-    result = module.solve(si, StopCondition(time_limit=time_limit), random.Random(seed),
-                          module.Params())
-    return si, result
+    result = module.solve(setup.si, setup.pdef, StopCondition(time_limit=time_limit),
+                          random.Random(seed), module.Params())
+    return setup, result
 
 
-def assert_solved_and_valid(si, result):
+def assert_solved_and_valid(setup, result):
     assert result.solved, (result.status, result.message)
     text = format_plan(result.trajectory, result.tree)
-    report = validate_plan(si, text)
+    report = validate_plan(setup, text)
     assert report.valid, report.first_failure
     return text
 
@@ -52,8 +52,8 @@ def assert_solved_and_valid(si, result):
 @pytest.mark.parametrize("system", sorted(SMALL))
 @pytest.mark.parametrize("planner", ["blossom", "kpiece", "rgrrt"])
 def test_planner_solves_each_system_and_the_validator_accepts(planner, system):
-    si, result = solve(planner, SMALL[system], 1)
-    text = assert_solved_and_valid(si, result)
+    setup, result = solve(planner, SMALL[system], 1)
+    text = assert_solved_and_valid(setup, result)
     _, again = solve(planner, SMALL[system], 1)
     assert format_plan(again.trajectory, again.tree) == text  # -seed reproduces
 
@@ -69,9 +69,9 @@ def test_kinodynamic_planners_are_registered_for_the_family_only(planner):
 
 
 def test_blossom_holds_each_control_until_kmax_or_the_first_invalid_slice():
-    si, result = solve("blossom", SMALL["car1"], 2)
-    assert_solved_and_valid(si, result)
-    system, cut = si.system, 0
+    setup, result = solve("blossom", SMALL["car1"], 2)
+    assert_solved_and_valid(setup, result)
+    system, cut, si = setup.system, 0, setup.si
     for parent, control, child in result.edges:
         k = control[-1]
         assert system.kmin <= k <= system.kmax
@@ -85,9 +85,9 @@ def test_blossom_holds_each_control_until_kmax_or_the_first_invalid_slice():
 
 @pytest.mark.parametrize("system", sorted(SMALL))
 def test_advance_agrees_with_propagate_and_the_state_validator(system):
-    si = kinoplan_space_information(parse_kinoplan(SMALL[system]))
-    rng, sys_ = random.Random(3), si.system
-    state = si.start
+    setup = kinoplan_setup(parse_kinoplan(SMALL[system]))
+    si, rng, sys_ = setup.si, random.Random(3), setup.system
+    state = setup.pdef.start
     for _ in range(60):
         values = sys_.sample_values(rng)
         end, k = si.advance(state, values, sys_.kmax)
@@ -123,8 +123,8 @@ def test_body_test_and_its_free_disc_agree_with_the_placed_polygon(name):
 def test_cli_blossom_plans_the_pendulum_and_the_answer_validates():
     done = run_planner(["-planner", "blossom", "-seed", "3"], SMALL["pendulum"])
     assert done.returncode == 0, done.stderr
-    si = kinoplan_space_information(parse_kinoplan(SMALL["pendulum"]))
-    report = validate_plan(si, done.stdout.decode())
+    report = validate_plan(kinoplan_setup(parse_kinoplan(SMALL["pendulum"])),
+                           done.stdout.decode())
     assert report.valid, report.first_failure
 
 
@@ -134,8 +134,8 @@ def test_cli_blossom_plans_the_pendulum_and_the_answer_validates():
 def test_every_planner_solves_every_family_problem_for_20_seeds(planner, problem):
     text = (FAMILY / f"{problem}.kp").read_text()
     for seed in range(1, 21):
-        si, result = solve(planner, text, seed, time_limit=30.0)
-        assert_solved_and_valid(si, result)
+        setup, result = solve(planner, text, seed, time_limit=30.0)
+        assert_solved_and_valid(setup, result)
 
 
 def test_cli_blossom_refuses_a_grid_problem_in_one_line():
@@ -150,6 +150,6 @@ def test_cli_blossom_refuses_a_grid_problem_in_one_line():
 def test_start_at_rest_in_goal_is_one_held_line(planner):
     text = "kinoplan 1\nsystem pendulum\nstart theta -pi/2 omega 0\n" \
            "goal theta -pi/2 omega 0 within 0.1\n"
-    si, result = solve(planner, text, 1)
-    assert_solved_and_valid(si, result)
-    assert result.trajectory == ((si.start[0], 0.0, 0.0, 1),)
+    setup, result = solve(planner, text, 1)
+    assert_solved_and_valid(setup, result)
+    assert result.trajectory == ((setup.pdef.start[0], 0.0, 0.0, 1),)

@@ -8,7 +8,7 @@ import pytest
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from rrt_cli.planners import PLANNERS, rrt
 from rrt_cli.planners.base import StopCondition
 from tests.conftest import ROOT, run_planner
@@ -19,20 +19,20 @@ SLOW = pytest.mark.slow
 
 
 def plan(text: str, seed: int, time_limit: float = 60.0):
-    si = kinoplan_space_information(parse_kinoplan(text))
-    result = rrt.solve(si, StopCondition(time_limit=time_limit), random.Random(seed),
-                       rrt.Params())
-    return si, result
+    setup = kinoplan_setup(parse_kinoplan(text))
+    result = rrt.solve(setup.si, setup.pdef, StopCondition(time_limit=time_limit),
+                       random.Random(seed), rrt.Params())
+    return setup, result
 
 
-def assert_solved_and_valid(si, result):
+def assert_solved_and_valid(setup, result):
     assert result.solved, (result.status, result.message)
-    system = si.system
+    system = setup.system
     n, m = len(system.state_names), len(system.control_names)
     for row in result.trajectory + result.tree:
         assert len(row) == n + m  # s.. u.. K (control_names ends with K)
         assert system.control_violation(row[n:]) is None
-    report = validate_plan(si, format_plan(result.trajectory, result.tree))
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
     assert report.valid, report.first_failure
 
 
@@ -47,8 +47,8 @@ CASES = [pytest.param(name, seed, marks=() if fast else SLOW, id=f"{name}-{seed}
 
 @pytest.mark.parametrize("name,seed", CASES)
 def test_rrt_solves_family_problem_and_validator_accepts(name, seed):
-    si, result = plan((FAMILY / f"{name}.kp").read_text(), seed)
-    assert_solved_and_valid(si, result)
+    setup, result = plan((FAMILY / f"{name}.kp").read_text(), seed)
+    assert_solved_and_valid(setup, result)
 
 
 OPEN_CAR2 = """kinoplan 1
@@ -60,8 +60,8 @@ goal x 9 y 10 within 1.5
 
 
 def test_rrt_on_an_open_car2_problem_is_valid_and_reproducible():
-    si, first = plan(OPEN_CAR2, 5)
-    assert_solved_and_valid(si, first)
+    setup, first = plan(OPEN_CAR2, 5)
+    assert_solved_and_valid(setup, first)
     _, again = plan(OPEN_CAR2, 5)
     assert format_plan(first.trajectory, first.tree) == format_plan(again.trajectory, again.tree)
 
@@ -81,33 +81,34 @@ goal theta 0.05 within 0.1
 
 
 def test_start_at_rest_in_goal_is_one_line_with_zero_torque_for_kmin():
-    si, result = plan(AT_REST_IN_GOAL, 1)
-    assert result.trajectory == ((si.start[0], 0.0, 0.0, 1),)
-    assert_solved_and_valid(si, result)
+    setup, result = plan(AT_REST_IN_GOAL, 1)
+    assert result.trajectory == ((setup.pdef.start[0], 0.0, 0.0, 1),)
+    assert_solved_and_valid(setup, result)
 
 
 def test_start_in_goal_that_drifts_out_plans_instead():
-    si, result = plan(DRIFTS_OUT_OF_GOAL, 1)
-    assert si.goal.reached(si.start)
-    assert si.start_in_goal_controls() is None
-    assert_solved_and_valid(si, result)
+    setup, result = plan(DRIFTS_OUT_OF_GOAL, 1)
+    start, goal = setup.pdef.start, setup.pdef.goal
+    assert goal.reached(start)
+    assert setup.si.stay_controls(start, goal) is None
+    assert_solved_and_valid(setup, result)
 
 
 def test_goal_target_fills_unnamed_variables_from_a_uniform_sample():
-    si = kinoplan_space_information(parse_kinoplan((FAMILY / "unicycle-circles.kp").read_text()))
-    rng = random.Random(4)
-    targets = [si.goal_target(rng) for _ in range(20)]
+    setup = kinoplan_setup(parse_kinoplan((FAMILY / "unicycle-circles.kp").read_text()))
+    si, rng = setup.si, random.Random(4)
+    targets = [si.goal_target(setup.pdef.goal, rng) for _ in range(20)]
     assert {t[:2] for t in targets} == {(42.0, 42.0)}
     assert len({t[2:] for t in targets}) == 20  # theta, v, omega drawn each time
     assert all(si.space.satisfies_bounds(t) for t in targets)
-    full = kinoplan_space_information(parse_kinoplan(AT_REST_IN_GOAL))
+    full = kinoplan_setup(parse_kinoplan(AT_REST_IN_GOAL))
     rng = random.Random(4)
-    assert full.goal_target(rng) == full.goal.target
+    assert full.si.goal_target(full.pdef.goal, rng) == full.pdef.goal.target
     assert rng.random() == random.Random(4).random()  # a full goal draws nothing
 
 
 def test_nearest_is_by_the_metric_with_angles_wrapping():
-    si = kinoplan_space_information(parse_kinoplan((FAMILY / "pendulum-t3.kp").read_text()))
+    si = kinoplan_setup(parse_kinoplan((FAMILY / "pendulum-t3.kp").read_text())).si
     index = si.new_nearest()
     for state in [(3.1, 0.0), (0.0, 0.5), (-1.0, 0.0)]:
         index.add(state)
@@ -130,8 +131,7 @@ def test_cli_plans_a_kinoplan_problem_and_the_answer_validates():
     done = run_planner(["-seed", "1"], PENDULUM)
     assert done.returncode == 0, done.stderr
     assert done.stderr == b""
-    si = kinoplan_space_information(parse_kinoplan(PENDULUM))
-    report = validate_plan(si, done.stdout.decode())
+    report = validate_plan(kinoplan_setup(parse_kinoplan(PENDULUM)), done.stdout.decode())
     assert report.valid, report.first_failure
     again = run_planner(["-seed", "1", "-stats"], PENDULUM)
     assert again.stdout == done.stdout

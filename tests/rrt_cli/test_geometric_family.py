@@ -8,10 +8,10 @@ import pytest
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from rrt_cli.planners import PLANNERS, prmstar
 from rrt_cli.planners.base import StopCondition
-from rrt_cli.planners.point_common import path_length
+from rrt_cli.planners.paths import path_length
 from rrt_cli.planners.steering import StraightLineSteering
 from planning_core.worlds.link_tests import LinkTests
 from tests.conftest import ROOT, plan_in_process, run_planner
@@ -51,40 +51,43 @@ goal theta1 1.5 theta2 1.5 within 0.01
 SMALL = {"arm": ARM, "body": BODY, "arm-shapes": ARM_SHAPES}
 
 
-def geometric_si(text: str):
-    return kinoplan_space_information(parse_kinoplan(text))
+def geometric_setup(text: str):
+    return kinoplan_setup(parse_kinoplan(text))
 
 
-def solve(planner: str, si, seed: int, time_limit: float = 30.0, params=None):
+def solve(planner: str, setup, seed: int, time_limit: float = 30.0, params=None):
     module = PLANNERS[planner].load()
-    return module.solve(si, StopCondition(time_limit=time_limit), random.Random(seed),
-                        params or module.Params())
+    return module.solve(setup.si, setup.pdef, StopCondition(time_limit=time_limit),
+                        random.Random(seed), params or module.Params())
 
 
-def assert_solved_and_valid(si, result):
+def assert_solved_and_valid(setup, result):
     assert result.solved, (result.status, result.message)
-    n = si.space.dimension
+    n = setup.si.space.dimension
     assert all(len(row) == n for row in result.trajectory)
     assert all(len(row) == 2 * n for row in result.tree)
-    assert result.trajectory[0] == si.start and si.goal.accepts(result.trajectory[-1])
-    report = validate_plan(si, format_plan(result.trajectory, result.tree))
+    start, goal = setup.pdef.start, setup.pdef.goal
+    assert result.trajectory[0] == start and goal.accepts(result.trajectory[-1])
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
     assert report.valid, report.first_failure
 
 
 @pytest.mark.parametrize("planner", GEOMETRIC_PLANNERS)
 @pytest.mark.parametrize("problem", sorted(SMALL))
 def test_planner_solves_a_small_geometric_problem_and_the_validator_accepts(planner, problem):
-    si = geometric_si(SMALL[problem])
+    setup = geometric_setup(SMALL[problem])
+    si = setup.si
     # PRM*'s refinement on a smaller scale: the default runs for seconds.
     small = prmstar.Params(min_refined_vertices=32, max_refined_vertices=128)
-    result = solve(planner, si, seed=1, params=small if planner == "prmstar" else None)
-    assert_solved_and_valid(si, result)
+    result = solve(planner, setup, seed=1, params=small if planner == "prmstar" else None)
+    assert_solved_and_valid(setup, result)
     assert len(result.trajectory) > 2  # the obstacle is in the straight line's way
 
 
 @pytest.mark.parametrize("problem", sorted(SMALL))
 def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem, monkeypatch):
-    si = geometric_si(SMALL[problem])
+    setup = geometric_setup(SMALL[problem])
+    si = setup.si
     rng = random.Random(5)
     blocked = tested = samples_total = 0
     valid = si.is_valid
@@ -114,7 +117,8 @@ def test_first_hit_is_the_first_invalid_sample_the_validator_would_test(problem,
 
 
 def test_a_partial_extension_ends_on_a_motion_that_is_free_at_its_own_samples():
-    si = geometric_si(BODY)
+    setup = geometric_setup(BODY)
+    si = setup.si
     steering = StraightLineSteering(si, True, si.check, 1.0)
     rng = random.Random(2)
     partial = 0
@@ -130,7 +134,8 @@ def test_a_partial_extension_ends_on_a_motion_that_is_free_at_its_own_samples():
 
 def test_check_around_keeps_the_free_edges_at_a_vertex_and_drops_the_blocked_ones():
     from rrt_cli.planners.prm import Roadmap
-    si = geometric_si(BODY)
+    setup = geometric_setup(BODY)
+    si = setup.si
     roadmap, draw = Roadmap(si), si.free_sampler(random.Random(3))
     for _ in range(60):
         roadmap.add_vertex(draw(), neighbors=12)
@@ -148,12 +153,13 @@ def test_check_around_keeps_the_free_edges_at_a_vertex_and_drops_the_blocked_one
 
 def test_rrtconnect_targets_the_family_with_uniform_states_valid_or_not():
     from rrt_cli.planners import rrtconnect
-    si = geometric_si(BODY)
+    setup = geometric_setup(BODY)
+    si = setup.si
     si.free_sampler = None  # not asked for by default
-    assert_solved_and_valid(si, solve("rrtconnect", si, seed=1))
+    assert_solved_and_valid(setup, solve("rrtconnect", setup, seed=1))
     with pytest.raises(TypeError):
-        solve("rrtconnect", si, seed=1,
-              params=rrtconnect.Params(kinoplan_free_space_targets=True))
+        solve("rrtconnect", setup, seed=1,
+              params=rrtconnect.Params(free_space_targets=True))
 
 
 def test_registry_geometric_kinoplan_systems_have_four_planners():
@@ -166,8 +172,9 @@ def test_registry_geometric_kinoplan_systems_have_four_planners():
 def test_prmstar_neighbour_rules():
     assert prmstar.star_neighbor_count(100, dimension=3) == 17  # e (4/3) 4.605 = 16.7
     assert prmstar.log_neighbor_count(100) == 5 and prmstar.log_neighbor_count(1) == 1
-    si = geometric_si(ARM)
-    assert_solved_and_valid(si, solve("prmstar", si, 3,
+    setup = geometric_setup(ARM)
+    si = setup.si
+    assert_solved_and_valid(setup, solve("prmstar", setup, 3,
                                       params=prmstar.Params(log_neighbors=True)))
 
 
@@ -179,10 +186,11 @@ def test_cli_seed_reproduces_and_smooth_shortens_a_geometric_answer(monkeypatch,
     assert plan_in_process(monkeypatch, argv, BODY)[1] == raw
     status, smooth, _ = plan_in_process(monkeypatch, argv + ["-smooth"], BODY)
     assert status == 0
-    si = geometric_si(BODY)
+    setup = geometric_setup(BODY)
+    si = setup.si
     lengths = []
     for text in (raw, smooth):
-        report = validate_plan(si, text)
+        report = validate_plan(setup, text)
         assert report.valid, report.first_failure
         lengths.append(report.path_length)
     assert lengths[1] <= lengths[0] + 1e-9
@@ -203,14 +211,15 @@ def test_cli_a_planner_that_does_not_plan_for_the_arm_says_which_do(monkeypatch)
 
 
 def test_lazy_roadmap_prints_only_edges_found_free_and_gives_way_to_the_time_limit():
-    si = geometric_si(BODY)
-    result = solve("prm", si, seed=2)
-    assert_solved_and_valid(si, result)
+    setup = geometric_setup(BODY)
+    si = setup.si
+    result = solve("prm", setup, seed=2)
+    assert_solved_and_valid(setup, result)
     for row in result.tree:
         a, b = row[:3], row[3:]
         assert si.first_hit(a, b) is None or si.first_hit(b, a) is None
     stop = StopCondition(time_limit=0.05)
-    prmstar.solve(si, stop, random.Random(1), prmstar.Params(min_refined_vertices=10 ** 6,
+    prmstar.solve(si, setup.pdef, stop, random.Random(1), prmstar.Params(min_refined_vertices=10 ** 6,
                                                              max_refined_vertices=10 ** 6))
     assert stop.time_is_up() and not stop.status(0) is None
 
@@ -225,13 +234,15 @@ SWEEP = [pytest.param(planner, name, marks=pytest.mark.slow, id=f"{planner}-{nam
 
 @pytest.mark.parametrize("planner,name", SWEEP)
 def test_every_planner_solves_every_geometric_family_problem_for_20_seeds(planner, name):
-    si = geometric_si((FAMILY / f"{name}.kp").read_text())
+    setup = geometric_setup((FAMILY / f"{name}.kp").read_text())
+    si = setup.si
     for seed in range(1, 21):
-        assert_solved_and_valid(si, solve(planner, si, seed, time_limit=30.0))
+        assert_solved_and_valid(setup, solve(planner, setup, seed, time_limit=30.0))
 
 
 def test_path_length_helper_takes_the_metric():
-    si = geometric_si(ARM)
+    setup = geometric_setup(ARM)
+    si = setup.si
     path = [(0.0, 0.0), (3.0, 0.0), (-3.0, 0.0)]  # the last motion wraps: 2 pi - 6
     assert path_length(path, si.distance) == pytest.approx(3.0 + (2 * 3.141592653589793 - 6))
 

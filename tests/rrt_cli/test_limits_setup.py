@@ -14,7 +14,8 @@ import pytest
 from benchmarks.bench_setup import measured_run
 from planning_core.interrupt import POLL_EVERY, Interrupted
 from planning_core.problem import Problem
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
+from tests.conftest import solve_on
 from planning_core.worlds.grid import GridWorld, cells_joined, connected_free_cells
 from planning_core.worlds.grid_cells import FreeCells
 from planning_core.worlds.grid_distance import CellDistanceToGoal
@@ -119,7 +120,7 @@ SETUP_LOOPS = {
     "two-sided proof": lambda p, stop: cells_joined(p, (0, 0), (p.width - 1, p.height - 1),
                                                     True, stop),
     "free cells": lambda p, stop: FreeCells(p.blocked, stop),
-    "dijkstra": lambda p, stop: CellDistanceToGoal(p, stop=stop),
+    "dijkstra": lambda p, stop: CellDistanceToGoal(p, p.goal, stop=stop),
 }
 
 
@@ -174,7 +175,7 @@ def test_set_up_structures_are_compact():
     # Counts per block of cells, not a list of every free cell (36 B a cell).
     assert peak_bytes_per_cell(lambda: FreeCells(problem.blocked), 100 * 100) < 1
     # A double and a byte a cell, plus the heap (it was two lists of floats: ~98 B).
-    assert peak_bytes_per_cell(lambda: CellDistanceToGoal(small), 60 * 60) < 20
+    assert peak_bytes_per_cell(lambda: CellDistanceToGoal(small, small.goal), 60 * 60) < 20
     # One byte a cell and an array for a stack (the list stack made it ~26 B).
     assert peak_bytes_per_cell(lambda: connected_free_cells(small, (0, 0), True), 60 * 60) < 6
 
@@ -186,16 +187,16 @@ def expired() -> StopCondition:
 
 @pytest.mark.parametrize("vehicle,name", [run for run in RUNS if run[1] != "rrt"])
 def test_planner_set_up_gives_way_to_an_expired_time_limit(vehicle, name):
-    si = grid_space_information(nearly_open_map(300), vehicle)
-    result = PLANNERS[name].load().solve(si, expired(), random.Random(1))
+    setup = grid_setup(nearly_open_map(300), vehicle)
+    result = solve_on(PLANNERS[name].load(), setup, expired(), random.Random(1))
     assert result.status is PlanStatus.TIME_LIMIT
     assert result.message == "during set-up"
     assert result.path == () and result.stats.iterations == 0
 
 
 def test_rrt_proof_gives_way_to_an_expired_time_limit():
-    si = grid_space_information(walled(300), "point")
-    result = PLANNERS["rrt"].load().solve(si, expired(), random.Random(1))
+    setup = grid_setup(walled(300), "point")
+    result = solve_on(PLANNERS["rrt"].load(), setup, expired(), random.Random(1))
     assert result.status is PlanStatus.TIME_LIMIT and result.message == "during set-up"
 
 
@@ -205,12 +206,14 @@ def test_running_out_of_memory_is_a_result_not_a_traceback(vehicle, name, monkey
     def no_memory(*args, **kwargs):
         raise MemoryError
 
-    si = grid_space_information(walled(50), vehicle)
+    setup = grid_setup(walled(50), vehicle)
+    si = setup.si
     for capability in ("certainly_disconnected", "distance_along_cells", "free_cell_indices"):
         monkeypatch.setattr(si.world, capability, no_memory)
-    monkeypatch.setattr(si, "sample_control", no_memory)
+    monkeypatch.setattr(si, "sample_control", no_memory, raising=False)  # control only
     monkeypatch.setattr(si, "sample_target", no_memory)
-    result = PLANNERS[name].load().solve(si, StopCondition(time_limit=30), random.Random(1))
+    result = solve_on(PLANNERS[name].load(), setup, StopCondition(time_limit=30),
+                      random.Random(1))
     assert result.status is PlanStatus.OUT_OF_MEMORY
     assert result.message and result.path == () and result.edges == ()
 

@@ -8,13 +8,13 @@ import random
 
 import pytest
 
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rrt
 from rrt_cli.planners.base import StopCondition
-from tests.conftest import COURSE_PROBLEMS, seed_sweep
+from tests.conftest import COURSE_PROBLEMS, seed_sweep, solve_on
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -25,7 +25,7 @@ SEEDS = range(20)
 @pytest.mark.parametrize("seed", seed_sweep(SEEDS))  # seeds 1-19: slow
 def test_course_problem_solved_and_valid(path, vehicle, seed):
     problem = parse_problem(path.read_text())
-    result = rrt.solve(grid_space_information(problem, vehicle), StopCondition(time_limit=60), random.Random(seed))
+    result = solve_on(rrt, grid_setup(problem, vehicle), StopCondition(time_limit=60), random.Random(seed))
     assert result.solved, result.status
     output = format_plan(result.trajectory, result.tree)
     report = validate_output(problem, vehicle, output, strict=True)

@@ -11,7 +11,7 @@ import pytest
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from tests.conftest import ROOT
 from validator.checks import (LAST_EDGE_COLLISION, NOT_AT_GOAL, NOT_AT_START, OUT_OF_BOUNDS,
                               PARSE_ERROR, SPACESHIP_COLLISION, VALID_VERDICT, validate_plan)
@@ -37,8 +37,8 @@ def answer(problem_text: str = PROBLEM, controls=CONTROLS):
 
 
 def check(rows, problem_text: str = PROBLEM, strict: bool = False):
-    si = kinoplan_space_information(parse_kinoplan(problem_text))
-    return validate_plan(si, format_plan(rows, rows[:1]), strict=strict)
+    setup = kinoplan_setup(parse_kinoplan(problem_text))
+    return validate_plan(setup, format_plan(rows, rows[:1]), strict=strict)
 
 
 def failure(rows, problem_text: str = PROBLEM):
@@ -160,8 +160,7 @@ def test_rows_of_the_wrong_width_fail_check_1():
 
 
 def test_an_empty_trajectory_fails_check_2():
-    si = kinoplan_space_information(parse_kinoplan(PROBLEM))
-    fault = validate_plan(si, "0\n0\n").first_failure
+    fault = validate_plan(kinoplan_setup(parse_kinoplan(PROBLEM)), "0\n0\n").first_failure
     assert fault.number == 2
 
 

@@ -8,7 +8,7 @@ import pytest
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from tests.validator.test_family_checks import validator
 from validator.checks import (EMPTY_TRAJECTORY, NOT_AT_GOAL, NOT_AT_START, OUT_OF_BOUNDS,
                               PARSE_ERROR, POINT_COLLISION, TOO_LONG, VALID_VERDICT, Limits,
@@ -41,8 +41,8 @@ def answer(rows) -> str:
 
 
 def check(problem_text: str, rows, strict: bool = False, limits: Limits = Limits()):
-    si = kinoplan_space_information(parse_kinoplan(problem_text))
-    return validate_plan(si, answer(rows), strict=strict, limits=limits)
+    setup = kinoplan_setup(parse_kinoplan(problem_text))
+    return validate_plan(setup, answer(rows), strict=strict, limits=limits)
 
 
 def failure(problem_text: str, rows, strict: bool = False):
@@ -64,7 +64,7 @@ def test_a_short_free_arm_move_is_valid_with_six_checks():
 
 def test_a_sweep_through_the_disc_between_valid_ends_is_caught_naming_link_and_obstacle():
     text = ARM.format(goal=3)
-    si = kinoplan_space_information(parse_kinoplan(text))
+    si = kinoplan_setup(parse_kinoplan(text)).si
     assert si.is_valid((0.0, 0.0)) and si.is_valid((3.0, 0.0))
     fault = failure(text, [(0.0, 0.0), (3.0, 0.0)])
     assert (fault.number, fault.message, fault.line) == (6, POINT_COLLISION, 2)
@@ -116,8 +116,7 @@ def test_rows_of_the_wrong_width_fail_check_1():
 
 
 def test_an_empty_trajectory_fails_check_2():
-    si = kinoplan_space_information(parse_kinoplan(RIGID))
-    assert validate_plan(si, "0\n0\n").first_failure.message == EMPTY_TRAJECTORY
+    assert validate_plan(kinoplan_setup(parse_kinoplan(RIGID)), "0\n0\n").first_failure.message == EMPTY_TRAJECTORY
 
 
 def test_a_rigid_body_out_of_bounds_fails_check_3():

@@ -10,7 +10,7 @@ import pypdfium2 as pdfium
 
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.plan_text import format_plan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from tests.validator.test_family_checks import PROBLEM as CAR2, answer as car2_answer
 from tests.validator.test_family_checks import printing, validator
 from tests.validator.test_family_geometric_checks import RIGID, answer as path_answer
@@ -36,7 +36,7 @@ goal theta pi/2 omega 0 within 0.1
 def render(problem_text: str, output: str, options: RenderOptions = RenderOptions(),
            cells: int = 60):
     problem = parse_kinoplan(problem_text)
-    report = validate_plan(kinoplan_space_information(problem), output)
+    report = validate_plan(kinoplan_setup(problem), output)
     out = io.BytesIO()
     summary = render_family(out, problem, report, report.verdict, ["a note"], "test.kp",
                             options, FamilyOptions(cspace_cells=cells))

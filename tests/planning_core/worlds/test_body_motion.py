@@ -5,7 +5,7 @@ obstacle kind, leave the bounds and wrap the angle."""
 import math
 import random
 
-from planning_core.geometric_space_information import MotionHit
+from planning_core.family_geometric_space_information import MotionHit
 from planning_core.kinoplan import body_tester, state_validator
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.nearest.kdtree import space_metric

@@ -19,13 +19,13 @@ WALLED = problem(["_____", "_____", "_####", "_____", "_____"], (4.5, 0.5), (4.5
 
 
 def test_goal_cell_is_straight_line_distance():
-    distance = CellDistanceToGoal(OPEN)
+    distance = CellDistanceToGoal(OPEN, OPEN.goal)
     assert distance(4.5, 4.5) == 0.0
     assert math.isclose(distance(4.2, 4.9), math.hypot(0.3, 0.4))
 
 
 def test_open_map_gives_octile_distance_at_cell_centres():
-    distance = CellDistanceToGoal(OPEN)
+    distance = CellDistanceToGoal(OPEN, OPEN.goal)
     for x in range(5):
         for y in range(5):
             dx, dy = 4 - x, 4 - y
@@ -34,13 +34,13 @@ def test_open_map_gives_octile_distance_at_cell_centres():
 
 
 def test_value_falls_along_a_straight_run_toward_the_goal():
-    distance = CellDistanceToGoal(OPEN)
+    distance = CellDistanceToGoal(OPEN, OPEN.goal)
     values = [distance(0.5 + k * 0.01, 4.5) for k in range(400)]
     assert all(b < a for a, b in zip(values, values[1:]))
 
 
 def test_a_wall_makes_the_way_round_count():
-    distance = CellDistanceToGoal(WALLED)
+    distance = CellDistanceToGoal(WALLED, WALLED.goal)
     # Just below the wall, right under the goal: 2 units straight, but the gap is at x=0.
     below = distance(4.5, 1.5)
     assert below > 8.0
@@ -49,7 +49,7 @@ def test_a_wall_makes_the_way_round_count():
 
 def test_blocked_outside_and_cut_off_positions_are_unreachable():
     cut_off = problem(["___", "###", "___"], (0.5, 0.5), (0.5, 2.5))
-    distance = CellDistanceToGoal(cut_off, unreachable=1e9)
+    distance = CellDistanceToGoal(cut_off, cut_off.goal, unreachable=1e9)
     assert distance(1.5, 1.5) == 1e9          # blocked cell
     assert distance(-0.1, 2.5) == 1e9         # outside the map
     assert distance(3.0, 2.5) == 1e9          # x == W is outside (half-open cells)
@@ -60,7 +60,7 @@ def test_blocked_outside_and_cut_off_positions_are_unreachable():
 def test_no_diagonal_step_through_a_blocked_corner():
     # Free cells (0,0) and (1,1) touch only at a corner between two blocked cells.
     corner = problem(["#_", "_#"], (0.5, 0.5), (1.5, 1.5))
-    assert CellDistanceToGoal(corner, unreachable=1e9)(0.5, 0.5) == 1e9
+    assert CellDistanceToGoal(corner, corner.goal, unreachable=1e9)(0.5, 0.5) == 1e9
 
 
 def test_every_free_cell_joined_to_the_goal_gets_a_finite_distance():
@@ -70,7 +70,7 @@ def test_every_free_cell_joined_to_the_goal_gets_a_finite_distance():
         rows[-1] = "_" + rows[-1][1:]    # start cell (bottom-left) free
         rows[0] = rows[0][:-1] + "_"     # goal cell (top-right) free
         p = problem(rows, (0.5, 0.5), (8.5, 6.5))
-        distance = CellDistanceToGoal(p, unreachable=math.inf)
+        distance = CellDistanceToGoal(p, p.goal, unreachable=math.inf)
         joined = connected_free_cells(p, (8, 6), diagonal=False)
         for index, linked in enumerate(joined):
             row, column = divmod(index, 9)
@@ -82,7 +82,7 @@ def test_every_free_cell_joined_to_the_goal_gets_a_finite_distance():
 
 
 def test_chain_runs_through_free_neighbours_to_the_goal_cell():
-    distance = CellDistanceToGoal(WALLED)
+    distance = CellDistanceToGoal(WALLED, WALLED.goal)
     chain = distance.chain_from(4.5, 0.5)
     assert chain[0] == (4, 0) and chain[-1] == (4, 4)
     for (c0, r0), (c1, r1) in zip(chain, chain[1:]):
@@ -97,6 +97,6 @@ def test_chain_runs_through_free_neighbours_to_the_goal_cell():
 
 
 def test_no_chain_from_a_blocked_cell_or_outside():
-    distance = CellDistanceToGoal(WALLED)
+    distance = CellDistanceToGoal(WALLED, WALLED.goal)
     assert distance.chain_from(2.5, 2.5) is None
     assert distance.chain_from(-1.0, 0.5) is None

@@ -15,7 +15,7 @@ import pytest
 
 from planning_core.kinoplan import link_tests, state_validator
 from planning_core.kinoplan_text import parse_kinoplan
-from planning_core.space_information import kinoplan_space_information
+from planning_core.setups import kinoplan_setup
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, ContinuousWorld
 from planning_core.worlds.link_tests import LinkTests
 from planning_core.worlds.shapes import SNAP
@@ -147,7 +147,7 @@ def check_against_reference(seed: int, count: int = 2000, tests: list[int] | Non
     rng = random.Random(seed)
     for problem in problems():
         arm, world = problem.system, problem.world
-        si = kinoplan_space_information(problem)
+        si = kinoplan_setup(problem).si
         valid, old_valid = state_validator(arm, world), reference_valid(arm, world)
         reach, old_reach = link_tests(arm, world).reach, reference_reach(arm, world)
         states = random_states(rng, si, count)

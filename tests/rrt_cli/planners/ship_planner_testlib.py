@@ -6,7 +6,7 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
@@ -60,11 +60,14 @@ MAZE_20 = (PROBLEMS_DIR / "maze-20.sw").read_text()
 MAZE_50 = (PROBLEMS_DIR / "maze-50.sw").read_text()
 
 
-def solve_and_validate(planner, problem_text: str, vehicle: Vehicle, seed: int, params):
-    """Run ``planner.solve``; it must solve, and its output must validate."""
+def solve_and_validate(planner, problem_text: str, vehicle: Vehicle, seed: int, params,
+                       options=None):
+    """Run ``planner.solve`` (the ship's ``GridControlOptions``: ``options``); it must
+    solve, and its output must validate."""
     problem = parse_problem(problem_text)
     stop = StopCondition(time_limit=120, max_iterations=ITERATION_CAP)
-    result = planner.solve(grid_space_information(problem, vehicle), stop, random.Random(seed), params)
+    setup = grid_setup(problem, vehicle, options)
+    result = planner.solve(setup.si, setup.pdef, stop, random.Random(seed), params)
     assert result.solved, (result.status, result.stats)
     output = format_plan(result.trajectory, result.tree)
     report = validate_output(problem, vehicle, output)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import pytest
 
+from planning_core.grid_space_information import GridControlOptions
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import kpiece
 from tests.conftest import COURSE_PROBLEMS
@@ -16,8 +17,9 @@ from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_
 
 
 def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,
-                       params: kpiece.KPIECEParams = kpiece.KPIECEParams()):
-    return ship_planner_testlib.solve_and_validate(kpiece, problem_text, vehicle, seed, params)
+                       params: kpiece.KPIECEParams = kpiece.KPIECEParams(), options=None):
+    return ship_planner_testlib.solve_and_validate(kpiece, problem_text, vehicle, seed, params,
+                                                   options)
 
 
 def test_published_variant_without_goal_steering_is_valid():
@@ -36,9 +38,14 @@ def test_maze_solved_along_the_free_cells(seed):
 
 
 def test_position_only_projection_and_set_cell_size_are_valid():
-    params = kpiece.KPIECEParams(cell_size=1.0, velocity_cell_size=None)
-    solve_and_validate(GAP_WALL, Vehicle.SPACESHIP, 0, params)
-    solve_and_validate(MAZE_20, Vehicle.LEFT_SPACESHIP, 0, params)
+    options = GridControlOptions(cell_size=1.0, velocity_cell_size=None)
+    solve_and_validate(GAP_WALL, Vehicle.SPACESHIP, 0, options=options)
+    solve_and_validate(MAZE_20, Vehicle.LEFT_SPACESHIP, 0, options=options)
+
+
+def test_longer_random_motions_are_valid():
+    options = GridControlOptions(min_steps=2, max_steps=4)
+    solve_and_validate(GAP_WALL, Vehicle.SPACESHIP, 1, options=options)
 
 
 @pytest.mark.slow  # a long run (seconds)
@@ -49,12 +56,18 @@ def test_left_ship_through_the_50x50_maze():
 
 
 @pytest.mark.parametrize("bad", [dict(good_score_factor=0.0), dict(bad_score_factor=1.5),
-                                 dict(min_steps=3, max_steps=2), dict(cell_size=-1.0),
-                                 dict(velocity_cell_size=0.0),
                                  dict(goal_controls=0), dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
         kpiece.KPIECEParams(**bad)
+
+
+@pytest.mark.parametrize("bad", [dict(min_steps=3, max_steps=2), dict(cell_size=-1.0),
+                                 dict(velocity_cell_size=0.0), dict(controls_per_extension=0),
+                                 dict(reach_angles=0), dict(reach_thrusts=(0.0,))])
+def test_bad_ship_options_are_rejected(bad):
+    with pytest.raises(ValueError):
+        GridControlOptions(**bad)
 
 
 def test_cell_grid_tells_interior_from_exterior():

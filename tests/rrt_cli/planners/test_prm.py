@@ -10,7 +10,7 @@ import statistics
 import pytest
 
 from benchmarks.generator import maze, narrow_passage, random_field
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
@@ -18,8 +18,8 @@ from planning_core.vehicles import Vehicle
 from rrt_cli.graph_search import astar
 from rrt_cli.planners import prm, prmstar, rrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from rrt_cli.planners.point_common import path_length
-from tests.conftest import COURSE_PROBLEMS, run_planner
+from rrt_cli.planners.paths import path_length
+from tests.conftest import COURSE_PROBLEMS, run_planner, solve_on
 from validator.checks import validate_output
 
 PLANNERS = {"prm": prm, "prmstar": prmstar}
@@ -61,7 +61,7 @@ def assert_valid_roadmap_answer(problem: Problem, result) -> None:
     for a, b in zip(result.trajectory, result.trajectory[1:]):
         assert (a, b) in edges or (b, a) in edges
     shortest = dijkstra_length(result.tree, problem.start, problem.goal)
-    assert path_length(result.trajectory) == pytest.approx(shortest, rel=1e-12)
+    assert path_length(result.trajectory, math.dist) == pytest.approx(shortest, rel=1e-12)
 
 
 # PRM* is the slow half of this 20-seed sweep (seconds per map): marked slow.
@@ -70,7 +70,7 @@ def assert_valid_roadmap_answer(problem: Problem, result) -> None:
 def test_course_problems_20_seeds_all_valid(path, name):
     problem = parse_problem(path.read_text())
     for seed in SEEDS:
-        result = PLANNERS[name].solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
+        result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                       random.Random(seed))
         assert_valid_roadmap_answer(problem, result)
 
@@ -82,7 +82,7 @@ def test_course_problems_20_seeds_all_valid(path, name):
 ], ids=["maze-11", "random-15", "narrow-14"])
 def test_generated_maps_valid(problem, name):
     for seed in range(4):
-        result = PLANNERS[name].solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
+        result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                       random.Random(seed))
         assert_valid_roadmap_answer(problem, result)
 
@@ -91,10 +91,10 @@ def test_prmstar_paths_are_at_least_20_percent_shorter_than_rrt():
     problem = random_field(25, 0.25, random.Random(3))
     star, tree = [], []
     for seed in range(8):
-        star.append(path_length(prmstar.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
-                                              random.Random(seed)).trajectory))
-        tree.append(path_length(rrt.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
-                                          random.Random(seed)).trajectory))
+        star.append(path_length(solve_on(prmstar, grid_setup(problem, Vehicle.POINT), StopCondition(30),
+                                              random.Random(seed)).trajectory, math.dist))
+        tree.append(path_length(solve_on(rrt, grid_setup(problem, Vehicle.POINT), StopCondition(30),
+                                          random.Random(seed)).trajectory, math.dist))
     assert statistics.median(star) <= 0.8 * statistics.median(tree)
 
 
@@ -106,11 +106,11 @@ def test_prmstar_refinement_only_ever_shortens_the_path(seed):
     # Same seed, same roadmap up to the first growth; refinement grows it further
     # while a growth gains 3%, so the answer is no longer and its roadmap no smaller.
     problem = random_field(15, 0.3, random.Random(3))
-    once = prmstar.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
+    once = solve_on(prmstar, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
                          ONE_GROWTH)
-    refined = prmstar.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(seed))
+    refined = solve_on(prmstar, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(seed))
     assert_valid_roadmap_answer(problem, refined)
-    assert path_length(refined.trajectory) <= path_length(once.trajectory)
+    assert path_length(refined.trajectory, math.dist) <= path_length(once.trajectory, math.dist)
     assert refined.stats.tree_nodes >= once.stats.tree_nodes
     assert refined.tree[:len(once.tree)] == once.tree
 
@@ -123,7 +123,7 @@ def test_prmstar_vertex_cap_binds_the_first_growth_too(seed):
     problem = random_field(15, 0.3, random.Random(3))
 
     def solve(cap, **rules):
-        return prmstar.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
+        return solve_on(prmstar, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
                              prmstar.PRMStarParams(max_refined_vertices=cap, **rules))
 
     first = solve(0)
@@ -145,11 +145,11 @@ def test_prmstar_refines_where_it_pays():
     open_map = Problem(20, 20, bytes(400), (0.5, 0.5), (19.5, 19.5))
     course = parse_problem(next(p for p in COURSE_PROBLEMS if p.stem == "space-2").read_text())
     for problem, grows in ((open_map, False), (course, True)):
-        grown = [prmstar.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
+        grown = [solve_on(prmstar, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(seed),
                                params).stats.tree_nodes
                  for seed in range(4) for params in (ONE_GROWTH, prmstar.PRMStarParams())]
         assert any(refined > once for once, refined in zip(grown[::2], grown[1::2])) == grows
-    straight = prmstar.solve(grid_space_information(open_map, Vehicle.POINT), StopCondition(30), random.Random(0))
+    straight = solve_on(prmstar, grid_setup(open_map, Vehicle.POINT), StopCondition(30), random.Random(0))
     assert straight.trajectory == (open_map.start, open_map.goal)
     assert straight.stats.tree_nodes == 2
 
@@ -167,7 +167,7 @@ def test_prm_tries_k_nearest_only():
     # most k edges, so edges <= k * vertices.
     problem = Problem(30, 30, bytes(900), (0.5, 0.5), (29.5, 29.5))
     params = prm.Params(neighbors=4, min_vertices=300)
-    result = prm.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(0), params)
+    result = solve_on(prm, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(0), params)
     assert_valid_roadmap_answer(problem, result)
     assert result.stats.tree_nodes >= 300
     assert len(result.tree) <= 4 * result.stats.tree_nodes
@@ -203,20 +203,20 @@ def test_limits_end_an_impossible_search(name):
     # Free cells (0, 0) and (1, 1) touch only at the point (1, 1): not provably
     # unreachable, but only a segment exactly through that point gets across.
     problem = Problem(2, 2, bytes([0, 1, 1, 0]), (0.3, 0.6), (1.5, 1.5))
-    result = PLANNERS[name].solve(grid_space_information(problem, Vehicle.POINT),
+    result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT),
                                   StopCondition(time_limit=30, max_iterations=1500),
                                   random.Random(1))
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.trajectory == ()
     walled = Problem(3, 1, bytes([0, 1, 0]), (0.5, 0.5), (2.5, 0.5))
-    result = PLANNERS[name].solve(grid_space_information(walled, Vehicle.POINT), StopCondition(30), random.Random(0))
+    result = solve_on(PLANNERS[name], grid_setup(walled, Vehicle.POINT), StopCondition(30), random.Random(0))
     assert result.status is PlanStatus.UNREACHABLE
 
 
 @pytest.mark.parametrize("name", sorted(PLANNERS))
 def test_goal_on_the_maps_edge_is_nudged_inside(name):
     problem = Problem(4, 3, bytes(12), (2.5, 1.5), (0.0, 0.0))
-    result = PLANNERS[name].solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
+    result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
     assert result.solved
     report = validate_output(problem, Vehicle.POINT,
                              format_plan(result.trajectory, result.tree), strict=True)

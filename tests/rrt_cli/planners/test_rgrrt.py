@@ -12,7 +12,8 @@ import random
 import pytest
 
 from planning_core.problem_text import parse_problem
-from planning_core.space_information import grid_space_information
+from planning_core.grid_space_information import GridControlOptions
+from planning_core.setups import grid_setup
 from planning_core.systems import spaceship
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rgrrt
@@ -21,12 +22,12 @@ from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, MAZE_20, MAZE_
 
 
 def solve_and_validate(problem_text: str, vehicle: Vehicle, seed: int,
-                       params: rgrrt.RGRRTParams = rgrrt.RGRRTParams()):
-    return ship_planner_testlib.solve_and_validate(rgrrt, problem_text, vehicle, seed, params)
+                       params: rgrrt.RGRRTParams = rgrrt.RGRRTParams(), options=None):
+    return ship_planner_testlib.solve_and_validate(rgrrt, problem_text, vehicle, seed, params,
+                                                   options)
 
 
-@pytest.mark.parametrize("bad", [dict(angles=0), dict(thrusts=(0.0,)),
-                                 dict(random_controls=-1), dict(goal_bias=1.5),
+@pytest.mark.parametrize("bad", [dict(random_controls=-1), dict(goal_bias=1.5),
                                  dict(guided_share=-0.1), dict(goal_controls=-1),
                                  dict(goal_distance="manhattan")])
 def test_bad_params_are_rejected(bad):
@@ -42,15 +43,15 @@ def test_a_thrust_beyond_the_ships_is_rejected():
 @pytest.mark.parametrize("vehicle", SHIPS, ids=lambda v: v.value)
 def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
     theta_range = vehicle.system.theta_range
-    params = rgrrt.RGRRTParams()
-    fixed = set(vehicle.system.reachable_controls(params.angles, params.thrusts))
-    assert len(fixed) == 1 + params.angles * len(params.thrusts)
+    options = GridControlOptions()
+    fixed = set(grid_setup(parse_problem(GAP_WALL), vehicle).si.reachable_controls())
+    assert len(fixed) == 1 + options.reach_angles * len(options.reach_thrusts)
     # A full turn is half-open; the left-only ship's half turn is closed, so
     # its set holds full braking (theta = pi), which the validator accepts.
     assert all(0.0 <= theta < spaceship.FULL_TURN for theta, _ in fixed)
     assert max(theta for theta, _ in fixed) == (
         math.pi if vehicle is Vehicle.LEFT_SPACESHIP
-        else theta_range * (params.angles - 1) / params.angles)
+        else theta_range * (options.reach_angles - 1) / options.reach_angles)
     result, _ = solve_and_validate(GAP_WALL, vehicle, 2, rgrrt.RGRRTParams(goal_controls=0))
     assert {tuple(row[4:]) for row in result.tree} <= fixed
     # The goal bias and the random targets together use more than one control.
@@ -59,7 +60,7 @@ def test_every_edge_takes_a_control_of_the_reachable_set(vehicle):
 
 def test_random_goal_controls_only_where_the_goal_is_within_a_step():
     params = rgrrt.RGRRTParams()
-    fixed = set(spaceship.SYSTEM.reachable_controls(params.angles, params.thrusts))
+    fixed = set(grid_setup(parse_problem(ZIGZAG), Vehicle.SPACESHIP).si.reachable_controls())
     problem = parse_problem(ZIGZAG)
     gx, gy = problem.goal
     random_edges = 0
@@ -96,10 +97,10 @@ def test_50x50_maze_both_ships(vehicle):
     solve_and_validate(MAZE_50, vehicle, 1)
 
 
-def teststopping_point_key_ranks_a_braking_line_into_a_wall_last():
+def test_stopping_point_key_ranks_a_braking_line_into_a_wall_last():
     problem = parse_problem(GAP_WALL)   # wall at column 3, gap in row 2; goal (6.5, 3.5)
-    si = grid_space_information(problem, "spaceship")
-    key = rgrrt.stopping_point_key(si.distance_along_free_space(), si)
+    setup = grid_setup(problem, "spaceship")
+    key = setup.si.stopping_point_key(setup.si.distance_along_free_space(setup.pdef.goal))
     at_rest = key((2.5, 2.5, 0.0, 0.0))
     through_gap = key((2.5, 2.5, 1.0, 0.0))     # stops at (3.5, 2.5), in the gap
     into_wall = key((2.5, 0.5, 1.0, 0.0))       # stops inside the wall
@@ -108,6 +109,7 @@ def teststopping_point_key_ranks_a_braking_line_into_a_wall_last():
 
 
 def test_extra_random_controls_are_valid():
-    params = rgrrt.RGRRTParams(random_controls=3, thrusts=(0.25, 0.5), angles=6)
+    params = rgrrt.RGRRTParams(random_controls=3)
+    options = GridControlOptions(reach_thrusts=(0.25, 0.5), reach_angles=6)
     for vehicle in SHIPS:
-        solve_and_validate(GAP_WALL, vehicle, 5, params)
+        solve_and_validate(GAP_WALL, vehicle, 5, params, options)

@@ -10,14 +10,14 @@ import statistics
 import pytest
 
 from benchmarks.generator import maze, narrow_passage, random_field
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rrt, rrtconnect
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner
+from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner, solve_on
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -40,7 +40,7 @@ def assert_valid(problem: Problem, result) -> None:
 def test_course_problems_20_seeds_all_valid(path):
     problem = parse_problem(path.read_text())
     for seed in SEEDS:
-        result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
+        result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                   random.Random(seed))
         assert_valid(problem, result)
 
@@ -53,7 +53,7 @@ def test_course_problems_20_seeds_all_valid(path):
 @pytest.mark.parametrize("params", [rrtconnect.Params(), PUBLISHED], ids=["frontier", "uniform"])
 def test_generated_maps_valid(name, problem, params):
     for seed in range(5):
-        result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(time_limit=30),
+        result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
                                   random.Random(seed), params)
         assert_valid(problem, result)
 
@@ -64,7 +64,7 @@ def test_solves_the_100x100_maze():
     # limit is what a regression would hit.
     problem = parse_problem((ROOT / "benchmarks" / "problems" / "maze-100.sw").read_text())
     for seed in range(3):
-        result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT),
+        result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT),
                                   StopCondition(time_limit=120, max_iterations=100_000),
                                   random.Random(seed))
         assert_valid(problem, result)
@@ -75,9 +75,9 @@ def test_frontier_targets_grow_fewer_nodes_on_a_maze():
     problem = maze(21, random.Random(4))
     frontier, uniform = [], []
     for seed in range(4):
-        frontier.append(rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
+        frontier.append(solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30),
                                          random.Random(seed)).stats.tree_nodes)
-        uniform.append(rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
+        uniform.append(solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30),
                                         random.Random(seed), PUBLISHED).stats.tree_nodes)
     assert statistics.median(frontier) < statistics.median(uniform) / 2
 
@@ -97,16 +97,16 @@ def test_grows_fewer_nodes_than_rrt_on_a_maze(params):
     problem = maze(21, random.Random(7))
     ours, theirs = [], []
     for seed in range(7):
-        ours.append(rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
+        ours.append(solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30),
                                      random.Random(seed), params).stats.tree_nodes)
-        theirs.append(rrt.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30),
+        theirs.append(solve_on(rrt, grid_setup(problem, Vehicle.POINT), StopCondition(30),
                                 random.Random(seed)).stats.tree_nodes)
     assert statistics.median(ours) < statistics.median(theirs)
 
 
 def test_same_seed_same_result_and_seeds_differ():
     problem = parse_problem(COURSE_PROBLEMS[-1].read_text())
-    runs = [rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(seed))
+    runs = [solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(seed))
             for seed in (4, 4, 5)]
     assert runs[0].trajectory == runs[1].trajectory and runs[0].tree == runs[1].tree
     assert runs[0].tree != runs[2].tree
@@ -120,7 +120,7 @@ def corner_only_problem() -> Problem:
 
 
 def test_iteration_limit_ends_an_impossible_search():
-    result = rrtconnect.solve(grid_space_information(corner_only_problem(), Vehicle.POINT),
+    result = solve_on(rrtconnect, grid_setup(corner_only_problem(), Vehicle.POINT),
                               StopCondition(time_limit=30, max_iterations=3000),
                               random.Random(1))
     assert result.status is PlanStatus.ITERATION_LIMIT
@@ -130,21 +130,21 @@ def test_iteration_limit_ends_an_impossible_search():
 
 def test_walled_off_goal_is_reported_at_once():
     problem = Problem(3, 1, bytes([0, 1, 0]), (0.5, 0.5), (2.5, 0.5))
-    result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
+    result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
     assert result.status is PlanStatus.UNREACHABLE
     assert result.stats.iterations == 0
 
 
 def test_start_within_tolerance_is_one_point():
     problem = Problem(3, 3, bytes(9), (1.5, 1.5), (1.55, 1.5))
-    result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
+    result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(0))
     assert result.solved and result.trajectory == ((1.5, 1.5),)
 
 
 def test_max_step_limits_every_edge():
     problem = parse_problem(COURSE_PROBLEMS[-1].read_text())
     params = rrtconnect.Params(max_step=0.75)
-    result = rrtconnect.solve(grid_space_information(problem, Vehicle.POINT), StopCondition(30), random.Random(2), params)
+    result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT), StopCondition(30), random.Random(2), params)
     assert_valid(problem, result)
     assert max(((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5
                for x0, y0, x1, y1 in result.tree) <= 0.75 + 1e-9

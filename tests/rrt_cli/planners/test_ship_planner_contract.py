@@ -15,13 +15,13 @@ import random
 import pytest
 
 from planning_core.problem_text import parse_problem
-from planning_core.space_information import grid_space_information
+from planning_core.setups import grid_setup
 from planning_core.systems import left_spaceship, spaceship
 from planning_core.vehicles import Vehicle
 from planning_core.worlds.grid import GridWorld
 from rrt_cli.planners import PLANNERS, kpiece, rgrrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_PROBLEMS, run_planner, seed_sweep
+from tests.conftest import COURSE_PROBLEMS, run_planner, seed_sweep, solve_on
 from tests.rrt_cli.planners.ship_planner_testlib import (
     GAP_WALL, SHIPS, WALLED_GOAL, ZIGZAG, solve_and_validate)
 from validator.checks import validate_output
@@ -76,7 +76,7 @@ def test_same_seed_same_output_and_other_seed_differs(planner):
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
 def test_walled_in_goal_ends_at_the_iteration_limit(planner):
     problem = parse_problem(WALLED_GOAL)
-    result = planner.solve(grid_space_information(problem, Vehicle.SPACESHIP), StopCondition(max_iterations=2000),
+    result = solve_on(planner, grid_setup(problem, Vehicle.SPACESHIP), StopCondition(max_iterations=2000),
                            random.Random(0))
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.trajectory == ()
@@ -98,7 +98,7 @@ def test_start_within_tolerance_of_goal_is_one_line(planner):
 @pytest.mark.parametrize("planner", PLANNER_MODULES, ids=by_name)
 def test_point_vehicle_is_refused(planner):
     with pytest.raises(ValueError):
-        planner.solve(grid_space_information(parse_problem(GAP_WALL), Vehicle.POINT),
+        solve_on(planner, grid_setup(parse_problem(GAP_WALL), Vehicle.POINT),
                       StopCondition(), random.Random(0))
 
 

@@ -5,8 +5,10 @@ resolution exactly as the validator checks them (``motion_samples``: ``n + 1``
 equally spaced samples, in the direction travelled), nearest neighbours by the
 metric in a kd-tree (angles wrapping), and the goal as a configuration. It
 answers the questions the straight-line planners (RRT, RRT-Connect, PRM, PRM*,
-the smoother) ask of any SpaceInformation; what only a grid has (a free-cell
-list, a frontier, a proof of disconnection) it answers its own way or with None.
+the smoother) ask of a geometric SpaceInformation
+(:class:`~planning_core.space_information.GeometricSpaceInformation`); what only a
+grid has (a free-cell list, a frontier, a proof of disconnection) it answers its
+own way or with None.
 """
 
 from __future__ import annotations
@@ -16,10 +18,10 @@ import random
 from dataclasses import dataclass
 from typing import Callable, Optional, Sequence
 
+from planning_core.family_space_information import FamilySpaceInformation
 from planning_core.interrupt import Stop
 from planning_core.kinoplan import body_tester, link_tests
 from planning_core.nearest.kdtree import space_metric
-from planning_core.space_information import KinoplanSpaceInformation
 from planning_core.worlds.body_motion import BodyMotionCheck
 from planning_core.worlds.link_tests import MotionCheck, sample_count
 
@@ -43,20 +45,23 @@ class MotionHit:
     """Of the motion's length, in (0, 1]: the first invalid sample is ``i / n``."""
 
 
-class GeometricSpaceInformation(KinoplanSpaceInformation):
+class FamilyGeometricSpaceInformation(FamilySpaceInformation):
     """A geometric family system in its continuous world, for straight-line planners."""
 
-    answers_straight_lines = True
-    """It answers the straight-line planners' questions itself (``point_common.straight_lines``)."""
     rechecks_prefix = True
     """A motion cut short is sampled anew (its samples are not the longer one's)."""
     lazy_edges = True
     """A roadmap checks an edge only when a path takes it (Bohlin & Kavraki 2000;
     why: docs/planners-geometric-family.md)."""
+    free_targets = False
+    """Uniform targets valid or not, as OMPL's (faster in rigid2-scene3's slot:
+    docs/planners-geometric-family.md)."""
 
     def __init__(self, problem):
         super().__init__(problem)
         system = self.system
+        self.wall_clearance = system.check
+        """A motion cut short stops one check step before its first invalid sample."""
         self.distance = system.distance
         self.interpolate = self.space.interpolate  # the unrolled one, without a wrapper
         self.check = system.check
@@ -90,20 +95,19 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
         """``n``: the motion a -> b is checked at ``n + 1`` samples, ends included."""
         return sample_count(self.distance(a, b), self.check)
 
-    def clearance(self, requested: float) -> float:
-        """How far a motion cut short stops before its first invalid sample: one
-        check step (``requested`` is in a grid's map units and is not used)."""
-        return self.check
+    def can_end_at(self, state: Sequence[float]) -> bool:
+        """A path may end or turn at any valid configuration."""
+        return self.is_valid(state)
 
-    def goal_configuration(self, rng: random.Random) -> Optional[State]:
+    def goal_configuration(self, goal, rng: random.Random) -> Optional[State]:
         """A valid configuration in the goal region where a path may end: the goal
         itself when it names every variable, else the goal's values completed
         from uniform samples (None if no valid one turns up)."""
-        if self.goal.full:
-            return self.goal.target
+        if goal.full:
+            return goal.target
         for _ in range(VALID_SAMPLE_ATTEMPTS):
-            state = self.goal.complete(self._sample(rng))
-            if self.is_valid(state) and self.goal.reached(state):
+            state = goal.complete(self._sample(rng))
+            if self.is_valid(state) and goal.reached(state):
                 return state
         return None
 
@@ -143,11 +147,6 @@ class GeometricSpaceInformation(KinoplanSpaceInformation):
                         return middle
             return uniform()
         return draw
-
-    def new_index(self):
-        """An empty nearest-neighbour index (kd-tree over the metric): ``add``,
-        ``nearest``, ``k_nearest``, ``within``."""
-        return self.new_nearest()
 
     def frontier(self):
         """No frontier of cells in a continuous space."""
