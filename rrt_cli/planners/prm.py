@@ -195,7 +195,8 @@ class Refinement:
 
 
 def plan_with_roadmap(si: GeometricSpaceInformation, pdef: ProblemDefinition,
-                      stop: StopCondition, rng: random.Random, neighbor_count: Callable[[int], int], min_vertices: int,
+                      stop: StopCondition, rng: random.Random,
+                      neighbor_count: Callable[[int], int], min_vertices: int,
                       refinement: Refinement, name: str) -> PlanResult:
     """Grow a roadmap until it answers the start-goal query or ``stop`` ends it.
 
@@ -229,40 +230,57 @@ def plan_with_roadmap(si: GeometricSpaceInformation, pdef: ProblemDefinition,
                       "no chain of free cells joins the start and the goal")
 
     draw_free = si.roadmap_sampler(rng, stop.time_is_up)
+    answers = _Answers(roadmap, stop, refinement, min_vertices)
     iterations = 0
-    solution: list[int] | None = None
-    next_query, first_try = 0, min_vertices
-    while True:
-        if solution is None:
-            if (len(roadmap) >= first_try
-                    and roadmap.component(START) == roadmap.component(GOAL)):
-                solution = _query(roadmap, stop)
-                if solution is None and roadmap.lazy:
-                    # Connected only through edges not yet checked: grow before retrying.
-                    first_try = math.ceil(len(roadmap) * LAZY_RETRY_GROWTH)
-                if solution is not None:
-                    next_query = math.ceil(len(roadmap) * refinement.growth)
-                    # Final if no growth is asked for, if it is the straight line
-                    # (a single edge: nothing is shorter), or if growing passes the cap.
-                    if (refinement.growth <= 1.0 or len(solution) == 2
-                            or next_query > refinement.max_vertices):
-                        return result(PlanStatus.SOLVED, solution, iterations)
-        elif len(roadmap) >= next_query:
-            shorter = _query(roadmap, stop) or solution
-            gain = 1.0 - (path_length(roadmap.points(shorter), si.distance)
-                          / path_length(roadmap.points(solution), si.distance))
-            solution = shorter
-            next_query = math.ceil(len(roadmap) * refinement.growth)
-            if (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
-                    or next_query > refinement.max_vertices):
-                return result(PlanStatus.SOLVED, solution, iterations)
+    while not answers.final():
         limit = stop.status(iterations)
         if limit is not None:
-            if solution is not None:
-                return result(PlanStatus.SOLVED, _query(roadmap, stop) or solution, iterations)
+            if answers.solution is not None:
+                return result(PlanStatus.SOLVED, _query(roadmap, stop) or answers.solution,
+                              iterations)
             return result(limit, None, iterations)
         iterations += 1
         roadmap.add_vertex(draw_free(), neighbor_count(len(roadmap) + 1))
+    return result(PlanStatus.SOLVED, answers.solution, iterations)
+
+
+class _Answers:
+    """When a growing roadmap is queried, and when its answer is final."""
+
+    def __init__(self, roadmap: Roadmap, stop: StopCondition, refinement: Refinement,
+                 min_vertices: int):
+        self.roadmap, self.stop, self.refinement = roadmap, stop, refinement
+        self.solution: list[int] | None = None
+        self.next_query, self.first_try = 0, min_vertices
+
+    def final(self) -> bool:
+        """Query the roadmap when it is time; True once the answer is final."""
+        roadmap, refinement = self.roadmap, self.refinement
+        if self.solution is None:
+            if not (len(roadmap) >= self.first_try
+                    and roadmap.component(START) == roadmap.component(GOAL)):
+                return False
+            self.solution = _query(roadmap, self.stop)
+            if self.solution is None:
+                if roadmap.lazy:
+                    # Connected only through edges not yet checked: grow before retrying.
+                    self.first_try = math.ceil(len(roadmap) * LAZY_RETRY_GROWTH)
+                return False
+            self.next_query = math.ceil(len(roadmap) * refinement.growth)
+            # Final if no growth is asked for, if it is the straight line (a single
+            # edge: nothing is shorter), or if growing passes the cap.
+            return (refinement.growth <= 1.0 or len(self.solution) == 2
+                    or self.next_query > refinement.max_vertices)
+        if len(roadmap) < self.next_query:
+            return False
+        shorter = _query(roadmap, self.stop) or self.solution
+        distance = roadmap.si.distance
+        gain = 1.0 - (path_length(roadmap.points(shorter), distance)
+                      / path_length(roadmap.points(self.solution), distance))
+        self.solution = shorter
+        self.next_query = math.ceil(len(roadmap) * refinement.growth)
+        return (gain < refinement.min_improvement and len(roadmap) >= refinement.min_vertices
+                or self.next_query > refinement.max_vertices)
 
 
 def _query(roadmap: Roadmap, stop: StopCondition) -> list[int] | None:
