@@ -11,8 +11,8 @@ writes them): ``level``, ``folder``, ``source``, ``keep``, ``hide`` (repeated),
   namespaces, as an unprivileged uid of its own with no capabilities and
   ``no_new_privs``; ``/proc`` its namespace's; a minimal ``/dev``; empty private
   ``/tmp``, ``/var/tmp``, ``/run`` and ``/dev/shm``; ``--out`` and the other
-  submissions hidden; everything else read-only. Its folder and ``/tmp`` live on one
-  private size-capped tmpfs, thrown away at the end. A run sees the built folder
+  submissions hidden; everything else read-only. Its folder (also ``HOME``) and
+  ``/tmp`` live on one private size-capped tmpfs, thrown away at the end. A run sees the built folder
   through an overlay (its changes go to the tmpfs); a build works on a copy of the
   submission, copied to ``keep`` when ``make.sh`` succeeds.
 - ``userns`` (not root): the same in a user namespace, but as the grader's own uid.
@@ -366,6 +366,8 @@ def _start_program(spec: dict, program: list[str]) -> None:
             signal.signal(signum, signal.SIG_DFL)  # as a process started by the shell
         os.chdir(spec["folder"])
         os.environ["TMPDIR"] = spec.get("tmpdir") or "/tmp"
+        if spec["level"] != "none":  # the grader's home is out of reach (or read-only)
+            os.environ["HOME"] = spec["folder"]
         for name, which in RLIMITS.items():
             if name in spec:
                 resource.setrlimit(which, (spec[name], spec[name]))

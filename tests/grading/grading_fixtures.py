@@ -80,7 +80,7 @@ HOSTILE = {
     "looks": ("", 'for d in /tmp /var/tmp /run /dev/shm /dev "{subs}"; do '
               'echo "seen $d:" $(ls -A "$d" 2>/dev/null) >&2; done\n'
               '[ -e "{out}" ] && echo "sees --out" >&2\n'
-              'echo "uid $(id -u) groups $(id -G)" >&2\n'
+              'echo "uid $(id -u) groups $(id -G) home $HOME tmp $TMPDIR" >&2\n'
               'grep -E "^(CapEff|CapBnd|NoNewPrivs):" /proc/self/status >&2\n'
               'exec "{run}" "$@"'),
     "forkbomb": ("", _PY_FORKS + 'exec "{run}" "$@"'),

@@ -190,6 +190,7 @@ def test_a_run_sees_empty_tmp_run_shm_a_minimal_dev_and_not_out(attacked):
                                     "stdout", "urandom", "zero"]
     assert seen[str(subs)] == ["looks"]  # not the other submissions
     assert "sees --out" not in log
+    assert f"home {subs / 'looks'} tmp /tmp\n" in log
 
 
 def test_a_run_has_an_unprivileged_uid_of_its_own_and_no_capabilities(attacked):
