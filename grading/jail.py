@@ -12,9 +12,9 @@ writes them): ``level``, ``folder``, ``source``, ``keep``, ``hide`` (repeated),
   ``no_new_privs``; ``/proc`` its namespace's; a minimal ``/dev``; empty private
   ``/tmp``, ``/var/tmp``, ``/run`` and ``/dev/shm``; ``--out`` and the other
   submissions hidden; everything else read-only. Its folder (also ``HOME``) and
-  ``/tmp`` live on one private size-capped tmpfs, thrown away at the end. A run sees the built folder
-  through an overlay (its changes go to the tmpfs); a build works on a copy of the
-  submission, copied to ``keep`` when ``make.sh`` succeeds.
+  ``/tmp`` live on one private size-capped tmpfs, thrown away at the end. A run
+  sees the built folder through an overlay (its changes go to the tmpfs); a build
+  works on a copy of the submission, copied to ``keep`` when ``make.sh`` succeeds.
 - ``userns`` (not root): the same in a user namespace, but as the grader's own uid.
 - ``none``: resource limits, working directory and ``TMPDIR`` only; the program is
   exec'd in place of this process.

@@ -5,10 +5,12 @@ full sandbox (root, namespaces), as in CI; elsewhere they are skipped and say wh
 from __future__ import annotations
 
 import os
+import shutil
 import socket
 import sqlite3
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -17,7 +19,7 @@ import pytest
 from grading.config import GradeConfig, Limits
 from grading.grade import grade
 from grading.runs import sandbox_here
-from grading.sandbox import FIRST_UID, FULL, SLOTS
+from grading.sandbox import FIRST_UID, FULL, SLOTS, Place, Sandbox
 from grading_fixtures import HOSTILE, ROOT, make_hostile, make_submission
 
 MODES = ("point", "grad")
@@ -251,3 +253,49 @@ def test_runs_see_the_build_not_each_other_and_the_submission_is_untouched(tmp_p
     assert (out / "built" / "one" / "product").read_text() == "built\n"
     assert not (out / "built" / "one" / "marker").exists()
 
+
+
+_NOBODY = 65534
+_SYSTEM_PYTHON = Path("/usr/bin/python3")
+
+
+@pytest.fixture
+def nobodys(tmp_path_factory):
+    """A scratch folder directly in /tmp (pytest's is root's alone)."""
+    folder = Path(tempfile.mkdtemp(prefix="rrt-grade-userns-", dir="/tmp"))
+    yield folder
+    shutil.rmtree(folder)
+
+
+def test_without_root_a_user_namespace_gives_the_same_view_as_the_graders_uid(nobodys):
+    """The ``userns`` level, run by an ordinary user (nobody, through setpriv, with the
+    system's python: ours may be out of its reach)."""
+    if os.geteuid() != 0 or not _SYSTEM_PYTHON.exists() or not Path("/usr/bin/setpriv").exists():
+        pytest.skip("needs root (to become nobody), setpriv and /usr/bin/python3")
+    tmp_path = nobodys
+    for name in ("subs/one", "built/one", "outside"):
+        (tmp_path / name).mkdir(parents=True)
+    (tmp_path / "built/one/given").write_text("layer\n")
+    (tmp_path / "outside/secret").write_text("host\n")
+    for path in [tmp_path, *tmp_path.rglob("*")]:
+        os.chown(path, _NOBODY, _NOBODY)
+    os.chmod(tmp_path, 0o755)
+    place = Place(tmp_path / "subs/one", tmp_path / "built/one", hide=(tmp_path / "subs",))
+    command = Sandbox("userns", "").command(place, ["sh", "-c", _LOOK_AROUND],
+                                            Limits(), 10)
+    done = subprocess.run(["setpriv", f"--reuid={_NOBODY}", f"--regid={_NOBODY}",
+                           "--clear-groups", str(_SYSTEM_PYTHON), *command[1:]],
+                          capture_output=True, text=True, timeout=30, cwd="/")
+    if "unshare" in done.stderr:
+        pytest.skip(f"this machine refuses unprivileged user namespaces: {done.stderr}")
+    assert done.stdout.split("\n") == [
+        "layer", "pid 2", "tmp " + tmp_path.parts[2], "dev fd null random shm stderr stdin "
+        "stdout urandom zero", "run", "CapEff:\t0000000000000000", "NoNewPrivs:\t1", "wrote",
+        "etc refused", "alive", ""], done.stderr
+    assert sorted(os.listdir(tmp_path / "built/one")) == ["given"]  # its write thrown away
+
+
+_LOOK_AROUND = ('cat given; echo "pid $$"; echo tmp $(ls -A /tmp); echo dev $(ls /dev); '
+                'echo run $(ls -A /run); grep -E "^(CapEff|NoNewPrivs):" /proc/self/status; '
+                'echo x > given && echo wrote; (echo x > /etc/rrt-grade-test) 2>/dev/null || '
+                'echo etc refused; kill -9 -1 2>/dev/null; echo alive')  # nothing else to kill
