@@ -63,12 +63,13 @@ def grade(config: GradeConfig, progress: Progress | None = None) -> Outcome:
 
 @contextlib.contextmanager
 def _only_grading(out: Path) -> Iterator[None]:
-    """Hold the lock of ``out`` (the file says who holds it), or raise :class:`Busy`."""
+    """Hold the lock of ``out`` (the file says who holds it), or raise :class:`Busy`.
+    A POSIX lock: the workers forked from us do not hold it, so it goes when we do."""
     fd = os.open(out / LOCK, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
     try:
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
+            fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except (BlockingIOError, PermissionError):  # EAGAIN or EACCES: held
             holder = os.read(fd, 32).decode(errors="replace").strip() or "unknown"
             raise Busy(f"{out} is being graded by another rrt-grade (pid {holder})") from None
         os.ftruncate(fd, 0)

@@ -67,6 +67,41 @@ def test_the_lock_goes_with_its_holder(tmp_path):
     assert main([*argv, "--rerun"]) == 0  # the first run's lock was released
 
 
+def _children(pid: int) -> list[int]:
+    found = []
+    for name in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{name}/stat") as stat:
+                if int(stat.read().rsplit(")", 1)[1].split()[1]) == pid:
+                    found.append(int(name))
+        except (OSError, IndexError, ValueError):
+            pass
+    return found
+
+
+def test_the_lock_goes_with_rrt_grade_killed_while_its_workers_still_unwind(tmp_path):
+    submissions, problems = _class(tmp_path, {"hang": ("", "sleep 100")})
+    out = tmp_path / "out"
+    first = subprocess.Popen([sys.executable, "-m", "grading",
+                              *_argv(submissions, problems, out, "--modes", "point")],
+                             cwd=ROOT, env=dict(os.environ, PYTHONPATH=str(ROOT)),
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while not (out / "logs" / "hang").exists() and time.monotonic() < deadline:
+        time.sleep(0.05)  # a run is in flight
+    workers = _children(first.pid)
+    for worker in workers:
+        os.kill(worker, signal.SIGSTOP)  # they would unwind, then end: here they cannot
+    first.kill()
+    first.wait()
+    try:  # a rerun at once: graded, not refused as busy
+        assert main(_argv(submissions, problems, out, "--modes", "point", "--timeout", "1")) == 0
+    finally:
+        for worker in workers:
+            os.kill(worker, signal.SIGKILL)
+    assert workers
+
+
 def test_report_md_shows_what_submissions_and_planners_wrote_as_text(tmp_path):
     submissions, problems = _class(tmp_path, {
         "x<img src=1 onerror=alert(1)>": ("", "echo '1'; echo '<script>alert(2)</script> 3'"),
