@@ -197,7 +197,9 @@ def _kill_the_rest() -> None:
 def _build_view(spec: dict) -> None:
     """The program's file system: see the module's docstring."""
     _read_only_everywhere()
-    source = os.open(spec["source"], os.O_RDONLY | os.O_DIRECTORY)  # before /tmp is covered
+    # Opened before /tmp is covered; not through a link (a submission that is a link to a
+    # folder of root's would be copied for the program to read).
+    source = os.open(spec["source"], os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW)
     source_path = f"/proc/self/fd/{source}"
     _mount("tmpfs", "/tmp", "tmpfs", MS_NOSUID | MS_NODEV,
            f"size={spec['disk']},nr_inodes={spec['inodes']},mode=0755")

@@ -39,7 +39,8 @@ def _place(config: GradeConfig, sandbox: Sandbox, submission: str, build: bool) 
     """A build works on a copy of the submission, kept as ``config.built`` when it
     succeeds; a run sees that through an overlay. Without namespaces both work in the
     submission's own folder."""
-    folder, built = (config.submissions / submission).resolve(), config.built(submission)
+    folder = config.submissions.resolve() / submission  # a link there is refused, not followed
+    built = config.built(submission)
     if not sandbox.namespaces:
         return Place(folder, folder)
     return Place(folder, folder if build else built.resolve(),

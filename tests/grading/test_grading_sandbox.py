@@ -255,6 +255,25 @@ def test_runs_see_the_build_not_each_other_and_the_submission_is_untouched(tmp_p
 
 
 
+def test_a_submission_that_is_a_link_to_a_folder_of_roots_is_not_copied_for_it(tmp_path):
+    _need_the_full_sandbox()
+    secret = tmp_path / "roots"
+    secret.mkdir(mode=0o700)
+    (secret / "make.sh").write_text("#!/bin/sh\ncat secret\n")
+    (secret / "make.sh").chmod(0o700)
+    (secret / "secret").write_text("root's own\n")
+    (tmp_path / "subs").mkdir()
+    (tmp_path / "subs" / "linked").symlink_to(secret)
+    (tmp_path / "problems").mkdir()
+    (tmp_path / "problems" / "simple-0.sw").write_bytes(
+        (ROOT / "benchmarks/problems/course/simple-0.sw").read_bytes())
+    outcome = grade(GradeConfig(tmp_path / "subs", tmp_path / "problems", tmp_path / "out",
+                                modes=("point",), jobs=1))
+    build = outcome.builds["linked"]
+    assert not build["ok"] and "Not a directory" in build["reason"]
+    assert "root's own" not in (tmp_path / "out" / "logs" / "linked" / "make.log").read_text()
+
+
 _NOBODY = 65534
 _SYSTEM_PYTHON = Path("/usr/bin/python3")
 
