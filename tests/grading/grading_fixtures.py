@@ -13,7 +13,7 @@ OUR_RUN = ROOT / "run.sh"
 CLASS = {
     "good": ("echo building", 'exec "{run}" "$@"'),
     "garbage": ("", "echo hello world"),
-    "hang": ("", "sleep 100"),
+    "hang": ("", "sleep 6063"),
     "crash": ("", "kill -SEGV $$"),
     "flood": ("", "exec yes 1.0 2.0"),
     "nobuild": ("echo oops >&2; exit 3", "exit 0"),

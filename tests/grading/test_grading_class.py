@@ -89,7 +89,8 @@ def test_nothing_the_submissions_started_is_left_running(graded):
     for name in filter(str.isdigit, os.listdir("/proc")):
         try:
             with open(f"/proc/{name}/cmdline", "rb") as cmdline:
-                if cmdline.read() in (b"sleep\x006061\x00", b"sleep\x006062\x00"):
+                if cmdline.read() in (b"sleep\x006061\x00", b"sleep\x006062\x00",
+                                      b"sleep\x006063\x00"):  # forks, hang (timed out)
                     left.append(int(name))
         except OSError:
             pass
