@@ -3,24 +3,31 @@
 from __future__ import annotations
 
 import shutil
+import zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = ROOT / "benchmarks" / "problems" / "course"
 OUR_RUN = ROOT / "run.sh"
 
-# name -> (make.sh body, run.sh body); {outside} and {run} are filled in.
+# name -> (make.sh body, run.sh body); {outside}, {run} and {nap} are filled in.
 CLASS = {
     "good": ("echo building", 'exec "{run}" "$@"'),
     "garbage": ("", "echo hello world"),
-    "hang": ("", "sleep 6063"),
+    "hang": ("", "sleep {nap}3"),
     "crash": ("", "kill -SEGV $$"),
     "flood": ("", "exec yes 1.0 2.0"),
     "nobuild": ("echo oops >&2; exit 3", "exit 0"),
-    "forks": ("", "sleep 6061 &\n(setsid sleep 6062 &)\n"
+    "forks": ("", "sleep {nap}1 &\n(setsid sleep {nap}2 &)\n"
                   'exec "{run}" "$@"'),
     "escape": ("", 'echo x > "{outside}" 2>/dev/null\nexec "{run}" "$@"'),
 }
+
+
+def nap(base: Path) -> str:
+    """The first digits of the class's sleeps (``sleep {nap}1``): which class a sleeping
+    process is from, when several are graded at once."""
+    return str(600 + zlib.crc32(str(base).encode()) % 300)
 
 
 def make_submission(base: Path, name: str, make: str, run: str, outside: Path) -> Path:
@@ -28,7 +35,8 @@ def make_submission(base: Path, name: str, make: str, run: str, outside: Path) -
     folder.mkdir(parents=True)
     for script, body in (("make.sh", make), ("run.sh", run)):
         path = folder / script
-        path.write_text("#!/bin/sh\n" + body.format(run=OUR_RUN, outside=outside) + "\n")
+        path.write_text("#!/bin/sh\n" + body.format(run=OUR_RUN, outside=outside,
+                                                     nap=nap(base)) + "\n")
         path.chmod(0o755)
     return folder
 
