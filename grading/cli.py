@@ -3,8 +3,9 @@
     rrt-grade --submissions DIR --problems DIR --out DIR [--modes point,grad,left]
               [--jobs N] [--timeout S] [--scheduler ADDRESS] [--rerun]
 
-Exit status: 0 grading completed (whatever the verdicts), 2 usage error, 4 a bug
-of ours or a lost cluster, 128+N stopped by signal N (rerun to resume).
+Exit status: 0 grading completed (whatever the verdicts), 2 usage error, 3 another
+rrt-grade is grading into the same --out, 4 a bug of ours or a lost cluster, 128+N
+stopped by signal N (rerun to resume).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 from typing import Sequence
 
 from grading.config import MODE_FLAGS, GradeConfig, ScoreRule
-from grading.grade import Outcome, grade
+from grading.grade import Busy, Outcome, grade
 from grading.report import gradebook_rows, summary_table, write_gradebook, write_report
 from planning_core.cli_args import (OneLineErrorParser, positive_float,
                                     positive_int, say, write_stdout)
@@ -24,6 +25,7 @@ from planning_core.cli_args import (OneLineErrorParser, positive_float,
 PROG = "rrt-grade"
 USAGE = (f"{PROG} --submissions DIR --problems DIR --out DIR [--modes point,grad,left] "
          "[--jobs N] [--timeout S] [--scheduler ADDRESS] [--rerun] [more: -h]")
+EXIT_BUSY = 3
 EXIT_OURS = 4
 
 
@@ -114,6 +116,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ValueError as error:  # a bad problem: nothing was run
         say(f"{PROG}: error: {error}")
         return 2
+    except Busy as error:
+        say(f"{PROG}: error: {error}")
+        return EXIT_BUSY
     return _finish(config, outcome)
 
 

@@ -16,13 +16,16 @@ MODE_VEHICLES: dict[str, Vehicle] = {"point": Vehicle.POINT, "grad": Vehicle.SPA
 
 @dataclass(frozen=True)
 class Limits:
-    """Per-process resource limits, set before a submission's program starts."""
+    """What a submission's program may use, set before it starts."""
 
     cpu_seconds: int = 0        # RLIMIT_CPU; 0: the run's timeout rounded up, plus one
     memory_bytes: int = 2 << 30  # RLIMIT_AS (address space)
     file_bytes: int = 64 << 20   # RLIMIT_FSIZE: the largest file it may write
-    processes: int = 64          # RLIMIT_NPROC (not binding for the real root user)
+    processes: int = 64          # RLIMIT_NPROC: binds per run under the sandbox's own uid
     output_bytes: int = 64 << 20  # the cap on its stdout (the validator's cap)
+    stderr_bytes: int = 1 << 20  # its stderr kept in the log; one line says what was dropped
+    disk_bytes: int = 256 << 20  # namespaces: its folder's changes and /tmp, one private tmpfs
+    entries: int = 65536         # namespaces: files and folders on that tmpfs
 
 
 @dataclass(frozen=True)
@@ -60,11 +63,15 @@ class GradeConfig:
     rerun: bool = False     # redo every build and run, finished or not
     sandbox: bool = True    # use namespaces where the kernel allows them
     limits: Limits = field(default_factory=Limits)
-    build_limits: Limits = field(default_factory=lambda: Limits(cpu_seconds=0,
-                                                                memory_bytes=4 << 30,
-                                                                file_bytes=1 << 30,
-                                                                processes=256))
+    build_limits: Limits = field(default_factory=lambda: Limits(
+        memory_bytes=4 << 30, file_bytes=1 << 30, processes=256, disk_bytes=1 << 30,
+        entries=262144))
     score: ScoreRule = field(default_factory=ScoreRule)
+
+    def built(self, submission: str) -> Path:
+        """Where a submission's folder is kept after its make.sh (namespaces): its runs'
+        read-only layer."""
+        return self.out / "built" / submission
 
     def submission_names(self) -> list[str]:
         """The submissions: subfolders of ``submissions``, sorted, hidden ones skipped."""

@@ -5,15 +5,20 @@ back; what the store already holds is not redone."""
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
+import fcntl
 import os
 import shutil
 import signal
+from collections import deque
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable, Iterable, Iterator
 
 from grading.config import MODE_FLAGS, GradeConfig
 from grading.executors import dask_executor, each_result
-from grading.runs import build_one, failed_build_row, run_one
+from grading.runs import build_one, failed_build_row, lost_build_row, lost_run_row, run_one
 from grading.store import Store
 from planning_core.problem_text import ProblemFormatError, parse_problem
 
@@ -32,23 +37,46 @@ class Outcome:
     runs_kept: int          # found finished in the store
 
 
+class Busy(Exception):
+    """Another grading run holds the same ``--out``."""
+
+
+LOCK = ".rrt-grade.lock"
+
+
 def grade(config: GradeConfig, progress: Progress | None = None) -> Outcome:
-    """Grade every submission x problem x mode into ``config.out``; resumable."""
+    """Grade every submission x problem x mode into ``config.out``; resumable; raises
+    :class:`Busy` while another grading run uses the same folder."""
     _check(config)
     config.out.mkdir(parents=True, exist_ok=True)
-    store = Store(config.out)
-    try:
-        if config.rerun:  # and what the earlier runs left: their logs and PDFs
+    with _only_grading(config.out), contextlib.closing(Store(config.out)) as store:
+        if config.rerun:  # and what the earlier runs left: logs, PDFs, built folders
             store.clear()
-            for folder in ("logs", "pdf"):
+            for folder in ("logs", "pdf", "built"):
                 shutil.rmtree(config.out / folder, ignore_errors=True)
         with _Executor(config) as executor:
             builds_done, builds_kept = _build_all(config, store, executor)
             runs_done, runs_kept = _run_all(config, store, executor, progress)
         return Outcome(store.runs(), store.builds(), builds_done, builds_kept, runs_done,
                        runs_kept)
+
+
+@contextlib.contextmanager
+def _only_grading(out: Path) -> Iterator[None]:
+    """Hold the lock of ``out`` (the file says who holds it), or raise :class:`Busy`.
+    A POSIX lock: the workers forked from us do not hold it, so it goes when we do."""
+    fd = os.open(out / LOCK, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+    try:
+        try:
+            fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except (BlockingIOError, PermissionError):  # EAGAIN or EACCES: held
+            holder = os.read(fd, 32).decode(errors="replace").strip() or "unknown"
+            raise Busy(f"{out} is being graded by another rrt-grade (pid {holder})") from None
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{os.getpid()}\n".encode())
+        yield
     finally:
-        store.close()
+        os.close(fd)
 
 
 def _check(config: GradeConfig) -> None:
@@ -104,16 +132,108 @@ def _run_all(config: GradeConfig, store: Store, executor, progress: Progress | N
 
 
 def _each_result(executor, jobs: int, tasks: Iterable[tuple]) -> Iterator[dict]:
-    """Each task's result as it finishes, at most ``jobs`` at once; a local worker runs
-    it through :func:`_in_local_worker`."""
-    if isinstance(executor, cf.ProcessPoolExecutor):
-        tasks = ((_in_local_worker, *task) for task in tasks)
+    """Each task's result as it finishes, at most ``jobs`` at once (on the local pool:
+    :func:`_local_results`)."""
+    if isinstance(executor, _LocalPool):
+        return _local_results(executor, jobs, tasks)
     return each_result(executor, jobs, tasks)
 
 
+# The row of a task whose worker died under it twice, the second time running alone.
+_LOST: dict[Callable, Callable[..., dict]] = {build_one: lost_build_row, run_one: lost_run_row}
+
+
+def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple]) -> Iterator[dict]:
+    """Like :func:`grading.executors.each_result`, but a worker that dies does not end
+    the grading: the pool is renewed, the tasks it took down are run again one at a time,
+    and one whose worker dies again gets a row that says so."""
+    queue = _Queue(iter(tasks))
+    pending: dict[cf.Future, tuple[tuple, bool]] = {}
+    while True:
+        try:
+            queue.submit(pool, jobs, pending)
+            broken = False
+        except BrokenProcessPool:  # it broke since the last wait
+            broken = True
+        if not pending and not broken:
+            return
+        if not broken:
+            done, _ = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+            broken = any(isinstance(future.exception(), BrokenProcessPool) for future in done)
+        if broken:
+            cf.wait(pending)  # the others go down with it
+            done = set(pending)
+            pool.renew()
+        for future in done:
+            task, alone = pending.pop(future)
+            if not isinstance(future.exception(), BrokenProcessPool):
+                yield future.result()
+            elif alone:
+                yield _LOST[task[0]](*task[1:])
+            else:
+                queue.suspects.append(task)
+
+
+class _Queue:
+    """The tasks not started yet, and those a dying worker took down (the suspects)."""
+
+    def __init__(self, tasks: Iterator[tuple]):
+        self.tasks = tasks
+        self.unsent: deque[tuple] = deque()   # taken from ``tasks``, refused by a broken pool
+        self.suspects: deque[tuple] = deque()
+
+    def submit(self, pool: _LocalPool, jobs: int, pending: dict) -> None:
+        """Submit what may run now: a suspect alone, else up to ``jobs`` others; raises
+        BrokenProcessPool (nothing lost) when the pool is broken."""
+        if self.suspects:
+            if not pending:
+                pending[pool.submit(self.suspects[0])] = (self.suspects[0], True)
+                self.suspects.popleft()
+            return
+        while len(pending) < jobs:
+            task = self.unsent.popleft() if self.unsent else next(self.tasks, ())
+            if not task:
+                return
+            try:
+                pending[pool.submit(task)] = (task, False)
+            except BrokenProcessPool:
+                self.unsent.appendleft(task)
+                raise
+
+
+class _LocalPool:
+    """A local process pool whose workers die with us, renewed when one died."""
+
+    def __init__(self, jobs: int):
+        self.jobs = jobs
+        self.executor = self._start()
+
+    def _start(self) -> cf.ProcessPoolExecutor:
+        return cf.ProcessPoolExecutor(self.jobs, initializer=_worker_start,
+                                      initargs=(os.getpid(),))
+
+    def submit(self, task: tuple) -> cf.Future:
+        return self.executor.submit(_in_local_worker, *task)
+
+    def renew(self) -> None:
+        self.executor.shutdown(wait=True)
+        self.executor = self._start()
+
+    def close(self, interrupted: bool) -> None:
+        """On an interruption, stop the runs in flight rather than wait for them."""
+        if interrupted:
+            stop = getattr(self.executor, "terminate_workers", None)  # Python 3.14
+            for process in ([] if stop else list(getattr(self.executor, "_processes",
+                                                         {}).values())):
+                process.terminate()
+            if stop:
+                stop()
+        self.executor.shutdown(wait=True, cancel_futures=interrupted)
+
+
 class _Executor:
-    """The executor: Dask's for a scheduler address, else a local process pool whose
-    workers die with us; on the way out (also on SIGTERM or Ctrl-C) nothing runs on."""
+    """The executor: Dask's for a scheduler address, else a local pool; on the way out
+    (also on SIGTERM or Ctrl-C) nothing runs on."""
 
     def __init__(self, config: GradeConfig):
         self.config = config
@@ -124,22 +244,13 @@ class _Executor:
             self.dask = dask_executor(self.config.scheduler)
             self.executor = self.dask.__enter__()
         else:
-            self.executor = cf.ProcessPoolExecutor(self.config.jobs,
-                                                   initializer=_worker_start,
-                                                   initargs=(os.getpid(),))
+            self.executor = _LocalPool(self.config.jobs)
         return self.executor
 
     def __exit__(self, kind, error, trace):
         if self.dask is not None:
             return self.dask.__exit__(kind, error, trace)
-        if kind is not None:  # interrupted: stop the runs in flight, do not wait for them
-            stop = getattr(self.executor, "terminate_workers", None)  # Python 3.14
-            for process in ([] if stop else list(getattr(self.executor, "_processes",
-                                                         {}).values())):
-                process.terminate()
-            if stop:
-                stop()
-        self.executor.shutdown(wait=True, cancel_futures=kind is not None)
+        self.executor.close(kind is not None)
         return False
 
 

@@ -5,9 +5,11 @@ summary table printed at the end."""
 from __future__ import annotations
 
 import csv
+import html
 import os
 from collections import defaultdict
 from pathlib import Path
+from urllib.parse import quote
 
 from grading.config import GradeConfig
 
@@ -42,18 +44,30 @@ def write_gradebook(config: GradeConfig, rows: list[dict]) -> Path:
     return path
 
 
+_MARKDOWN = str.maketrans({char: "\\" + char for char in "\\`*_[]|~"})
+
+
+def text(value) -> str:
+    """What a submission, a planner or a file name gave, shown as text in Markdown: one
+    line, HTML's ``& < >`` as entities, Markdown's emphasis, code, link and table marks
+    escaped."""
+    return html.escape(" ".join(str(value).split()), quote=False).translate(_MARKDOWN)
+
+
+def _link(label: str, path: str, out: Path) -> str:
+    return f"[{label}]({quote(os.path.relpath(path, out))})"
+
+
 def _cell(run: dict, out: Path) -> str:
     """A run's verdict in a table cell: a link to the PDF when it failed."""
     if run["valid"]:
         return "valid"
-    text = run["verdict"]
+    label = text(run["verdict"])
     if run["verdict"] == "invalid":
-        text += f" ({run['failed_check']})"
+        label += f" ({text(run['failed_check'])})"
     elif run.get("timed_out"):
-        text = "timed out"
-    if run.get("pdf"):
-        text = f"[{text}]({os.path.relpath(run['pdf'], out)})"
-    return text
+        label = "timed out"
+    return _link(label, run["pdf"], out) if run.get("pdf") else label
 
 
 def write_report(config: GradeConfig, runs: list[dict], builds: dict[str, dict]) -> Path:
@@ -65,20 +79,19 @@ def write_report(config: GradeConfig, runs: list[dict], builds: dict[str, dict])
              f"Modes: {', '.join(config.modes)}; timeout {config.timeout:g} s per run.", ""]
     for name, table in sorted(by_submission.items()):
         build = builds.get(name, {})
-        lines += [f"## {name}", "",
-                  "Build: " + ("ok" if build.get("ok") else f"failed: {build.get('reason')}")
-                  + (f" ([log]({os.path.relpath(build['log'], config.out)}))"
-                     if build.get("log") else ""),
-                  f"Sandbox: {build.get('sandbox') or 'unknown'}", "",
+        lines += [f"## {text(name)}", "",
+                  "Build: " + ("ok" if build.get("ok") else f"failed: {text(build.get('reason'))}")
+                  + (f" ({_link('log', build['log'], config.out)})" if build.get("log") else ""),
+                  f"Sandbox: {text(build.get('sandbox') or 'unknown')}", "",
                   "| problem | " + " | ".join(config.modes) + " |",
                   "|---|" + "---|" * len(config.modes)]
         for problem in sorted({problem for problem, _ in table}):
             cells = [_cell(table[problem, mode], config.out) if (problem, mode) in table
                      else "not run" for mode in config.modes]
-            lines.append(f"| {problem} | " + " | ".join(cells) + " |")
+            lines.append(f"| {text(problem)} | " + " | ".join(cells) + " |")
         failures = [run for run in table.values() if not run["valid"] and run["message"]]
-        lines += [""] + [f"- {run['problem']} {run['mode']}: {run['message']}"
-                         + (f" ({run['detail']})" if run.get("detail") else "")
+        lines += [""] + [f"- {text(run['problem'])} {run['mode']}: {text(run['message'])}"
+                         + (f" ({text(run['detail'])})" if run.get("detail") else "")
                          for run in sorted(failures, key=lambda r: (r["problem"], r["mode"]))]
         lines.append("")
     path = config.out / REPORT

@@ -4,13 +4,17 @@ answer with the validator's own functions. Each returns its row for the store.""
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import functools
+import shutil
 import tempfile
 import threading
 from pathlib import Path
+from typing import Iterator
 
 from grading.config import MODE_FLAGS, MODE_VEHICLES, GradeConfig, Limits
-from grading.sandbox import Sandbox, probe
+from grading.sandbox import Place, Sandbox, probe
 from planning_core.problem_text import format_problem, parse_problem
 from planning_core.setups import grid_setup
 from validator.checks import ValidationReport, validate_plan
@@ -31,18 +35,42 @@ def sandbox_here(wanted: bool) -> Sandbox:
 _probe_once = functools.lru_cache(maxsize=2)(probe)
 
 
-def _contained(config: GradeConfig, sandbox: Sandbox, submission: str, program: list[str],
-               log: Path, stdin: bytes, limits: Limits, timeout: float) -> PlannerRun:
-    """``program`` run in the submission's folder through the validator's machinery."""
-    log.parent.mkdir(parents=True, exist_ok=True)
-    log.write_bytes(b"")  # not appended to what an interrupted try left
+def _place(config: GradeConfig, sandbox: Sandbox, submission: str, build: bool) -> Place:
+    """A build works on a copy of the submission, kept as ``config.built`` when it
+    succeeds; a run sees that through an overlay. Without namespaces both work in the
+    submission's own folder."""
+    folder = config.submissions.resolve() / submission  # a link there is refused, not followed
+    built = config.built(submission)
+    if not sandbox.namespaces:
+        return Place(folder, folder)
+    return Place(folder, folder if build else built.resolve(),
+                 built.parent.resolve() if build else None,
+                 hide=(config.out.resolve(), config.submissions.resolve()))
+
+
+@contextlib.contextmanager
+def _private_tmp(config: GradeConfig, sandbox: Sandbox) -> Iterator[Path | None]:
+    """TMPDIR without namespaces: a folder of its own under OUT/tmp, removed after."""
+    if sandbox.namespaces:
+        yield None
+        return
     scratch = config.out / "tmp"
     scratch.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=scratch) as tmp, _ONE_AT_A_TIME:
-        command = sandbox.command((config.submissions / submission).resolve(),
-                                  Path(tmp).resolve(), log.resolve(), program, limits,
-                                  timeout)
-        return run_planner(command, stdin, timeout=timeout, output_cap=limits.output_bytes)
+    with tempfile.TemporaryDirectory(dir=scratch) as tmp:
+        yield Path(tmp)
+
+
+def _contained(config: GradeConfig, sandbox: Sandbox, place: Place, program: list[str],
+               log: Path, stdin: bytes, limits: Limits, timeout: float) -> PlannerRun:
+    """``program`` run in its place through the validator's machinery, its stderr (up to
+    the cap) into ``log``."""
+    log.parent.mkdir(parents=True, exist_ok=True)
+    with open(log, "wb") as sink, _private_tmp(config, sandbox) as tmp, \
+            sandbox.identity() as identity, _ONE_AT_A_TIME:
+        command = sandbox.command(dataclasses.replace(place, tmp=tmp), program, limits,
+                                  timeout, identity)
+        return run_planner(command, stdin, timeout=timeout, output_cap=limits.output_bytes,
+                           stderr_cap=limits.stderr_bytes, stderr_fd=sink.fileno())
 
 
 def _drop_if_empty(log: Path) -> str | None:
@@ -59,8 +87,14 @@ def build_one(config: GradeConfig, submission: str) -> dict:
     row = {"submission": submission, "log": str(log), "sandbox": sandbox.note}
     if not (config.submissions / submission / "make.sh").is_file():
         return {**row, "ok": 0, "reason": "no make.sh", "log": None}
-    run = _contained(config, sandbox, submission, ["sh", "-c", "exec ./make.sh >&2"], log,
-                     b"", config.build_limits, config.build_timeout)
+    if sandbox.namespaces:  # what an earlier build left (grading/jail.py: _keep)
+        built = config.built(submission)
+        for stale in (built, built.with_name(f".{submission}.partial")):
+            shutil.rmtree(stale, ignore_errors=True)
+        built.parent.mkdir(parents=True, exist_ok=True)
+    run = _contained(config, sandbox, _place(config, sandbox, submission, build=True),
+                     ["sh", "-c", "exec ./make.sh >&2"], log, b"", config.build_limits,
+                     config.build_timeout)
     reason = _build_failure(run, log)
     return {**row, "ok": int(not reason), "reason": reason, "exit_status": run.exit_code,
             "wall_time": round(run.wall_time, 6), "log": _drop_if_empty(log)}
@@ -91,6 +125,21 @@ def failed_build_row(submission: str, problem: str, mode: str, build: dict) -> d
             "log": build.get("log")}
 
 
+LOST = "rrt-grade's worker died during this {}, twice (the second time running alone)"
+
+
+def lost_build_row(config: GradeConfig, submission: str) -> dict:
+    """The ``builds`` row of a build whose worker died under it."""
+    return {"submission": submission, "ok": 0, "reason": LOST.format("build")}
+
+
+def lost_run_row(config: GradeConfig, submission: str, problem: str, mode: str) -> dict:
+    """The ``runs`` row of a run whose worker died under it."""
+    return {"submission": submission, "problem": problem, "mode": mode,
+            "verdict": "planner failed", "valid": 0, "failed_check": "planner",
+            "message": LOST.format("run")}
+
+
 def run_one(config: GradeConfig, submission: str, problem_name: str, mode: str) -> dict:
     """Run ``./run.sh`` with the mode's flags on the problem, validate; the ``runs`` row."""
     sandbox = sandbox_here(config.sandbox)
@@ -98,7 +147,8 @@ def run_one(config: GradeConfig, submission: str, problem_name: str, mode: str) 
     setup = grid_setup(problem, MODE_VEHICLES[mode])
     stem = f"{Path(problem_name).stem}-{mode}"
     log = config.out / "logs" / submission / f"{stem}.stderr"
-    run = _contained(config, sandbox, submission, ["./run.sh", *MODE_FLAGS[mode]], log,
+    run = _contained(config, sandbox, _place(config, sandbox, submission, build=False),
+                     ["./run.sh", *MODE_FLAGS[mode]], log,
                      format_problem(problem).encode("ascii"), config.limits, config.timeout)
     report = None
     if run.ran_to_completion:

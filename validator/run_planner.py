@@ -86,8 +86,9 @@ def _kill_group(pgid: int) -> None:
 
 def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFAULT_TIMEOUT,
                 output_cap: int = DEFAULT_OUTPUT_CAP,
-                stderr_cap: int = DEFAULT_STDERR_CAP) -> PlannerRun:
-    """Start ``command``, feed it ``stdin_data``, collect its stdout.
+                stderr_cap: int = DEFAULT_STDERR_CAP, stderr_fd: int = 2) -> PlannerRun:
+    """Start ``command``, feed it ``stdin_data``, collect its stdout; its stderr is
+    passed on to ``stderr_fd`` (ours by default).
 
     Never raises for anything the planner does; returns within about ``timeout``
     seconds (plus the time the kernel takes to kill what it started, and at most
@@ -98,7 +99,7 @@ def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFA
                              stderr_cap=stderr_cap)
     if sys.stderr is not None:
         sys.stderr.flush()  # what we wrote before comes before what the planner writes
-    stderr = _StderrSink(stderr_cap)  # before Popen: its pipes may reuse a closed fd 2
+    stderr = _StderrSink(stderr_cap, stderr_fd)  # before Popen: its pipes may reuse a closed fd 2
     containment = _Containment()
     began = time.monotonic()
     try:

@@ -3,24 +3,31 @@
 from __future__ import annotations
 
 import shutil
+import zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = ROOT / "benchmarks" / "problems" / "course"
 OUR_RUN = ROOT / "run.sh"
 
-# name -> (make.sh body, run.sh body); {outside} and {run} are filled in.
+# name -> (make.sh body, run.sh body); {outside}, {run} and {nap} are filled in.
 CLASS = {
     "good": ("echo building", 'exec "{run}" "$@"'),
     "garbage": ("", "echo hello world"),
-    "hang": ("", "sleep 100"),
+    "hang": ("", "sleep {nap}3"),
     "crash": ("", "kill -SEGV $$"),
     "flood": ("", "exec yes 1.0 2.0"),
     "nobuild": ("echo oops >&2; exit 3", "exit 0"),
-    "forks": ("", "sleep 60 & echo $! >> pids\n(setsid sleep 60 & echo $! >> pids)\n"
+    "forks": ("", "sleep {nap}1 &\n(setsid sleep {nap}2 &)\n"
                   'exec "{run}" "$@"'),
     "escape": ("", 'echo x > "{outside}" 2>/dev/null\nexec "{run}" "$@"'),
 }
+
+
+def nap(base: Path) -> str:
+    """The first digits of the class's sleeps (``sleep {nap}1``): which class a sleeping
+    process is from, when several are graded at once."""
+    return str(600 + zlib.crc32(str(base).encode()) % 300)
 
 
 def make_submission(base: Path, name: str, make: str, run: str, outside: Path) -> Path:
@@ -28,7 +35,8 @@ def make_submission(base: Path, name: str, make: str, run: str, outside: Path) -
     folder.mkdir(parents=True)
     for script, body in (("make.sh", make), ("run.sh", run)):
         path = folder / script
-        path.write_text("#!/bin/sh\n" + body.format(run=OUR_RUN, outside=outside) + "\n")
+        path.write_text("#!/bin/sh\n" + body.format(run=OUR_RUN, outside=outside,
+                                                     nap=nap(base)) + "\n")
         path.chmod(0o755)
     return folder
 
@@ -43,3 +51,63 @@ def make_class(base: Path, names: list[str], problems: list[str]) -> tuple[Path,
     for problem in problems:
         shutil.copy(COURSE / problem, problem_dir / problem)
     return submissions, problem_dir, outside
+
+
+# Hostile submissions: each tries what docs/grading.md says it cannot do, says on
+# stderr (its log) what it saw and what worked, then runs our planner (a valid answer).
+# {sentinel}: the pid of a process of the test's; {fifos}, {sockets}: paths the test
+# listens on outside the folder; {out}, {subs}: the grading's --out and --submissions.
+_PY_OPEN = ('python3 -c \'import os, sys\nfor path in sys.argv[1:]:\n    try:\n'
+            '        os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))\n'
+            '        print("opened", path, file=sys.stderr)\n    except OSError as e:\n'
+            '        print("refused", path, e.strerror, file=sys.stderr)\' ')
+_PY_CONNECT = ('python3 -c \'import socket, sys\nfor path in sys.argv[1:]:\n'
+               '    s = socket.socket(socket.AF_UNIX)\n    try:\n        s.connect(path)\n'
+               '        print("connected", path, file=sys.stderr)\n    except OSError as e:\n'
+               '        print("refused", path, e.strerror, file=sys.stderr)\' {sockets}\n')
+_PY_FORKS = ('python3 -c \'import os, signal, sys\nn = 0\ntry:\n    while n < 500:\n'
+             '        if os.fork() == 0:\n            signal.pause()\n            os._exit(0)\n'
+             '        n += 1\nexcept OSError:\n    pass\nprint("forked", n, file=sys.stderr)\' '
+             '"{subs}"\n')  # in its command line: which grading's it is
+_IN_OURS = ('grep -q jail.py /proc/1/cmdline 2>/dev/null || '
+            '{{ echo "not in the grader\'s namespace: no attack" >&2; exit 1; }}\n')
+HOSTILE = {
+    "good": ("", 'exec "{run}" "$@"'),
+    "killall": ("", 'kill -9 {sentinel} 2>/dev/null && echo "killed the sentinel" >&2\n'
+                + _IN_OURS + 'kill -9 -1 2>/dev/null\nfor p in /proc/[0-9]*; do '
+                '[ "${{p#/proc/}}" = $$ ] || kill -9 "${{p#/proc/}}" 2>/dev/null; done\n'
+                'echo attacked >&2\nexec "{run}" "$@"'),
+    "killparents": ("", 'p=$PPID; g=$(cut -d" " -f4 /proc/$p/stat)\n'
+                    'echo "parent $p grandparent $g" >&2\nkill -9 "$p" 2>/dev/null\n'
+                    '[ "$g" -gt 0 ] && kill -9 "$g" 2>/dev/null\nexec "{run}" "$@"'),
+    "ipc": ("", 'for f in {fifos}; do (echo attack > "$f") 2>/dev/null && echo "wrote $f" >&2; '
+            'done\n' + _PY_CONNECT + 'exec "{run}" "$@"'),
+    "devices": ("", _PY_OPEN + "/dev/kmsg /dev/loop0 /dev/loop-control /dev/tty0 "
+                "/proc/sys/kernel/hostname /proc/sys/vm/drop_caches /proc/sysrq-trigger "
+                "/sys/kernel/mm/transparent_hugepage/enabled\nexec \"{run}\" \"$@\""),
+    "looks": ("", 'for d in /tmp /var/tmp /run /dev/shm /dev "{subs}"; do '
+              'echo "seen $d:" $(ls -A "$d" 2>/dev/null) >&2; done\n'
+              '[ -e "{out}" ] && echo "sees --out" >&2\n'
+              'echo "uid $(id -u) groups $(id -G) home $HOME tmp $TMPDIR" >&2\n'
+              'grep -E "^(CapEff|CapBnd|NoNewPrivs):" /proc/self/status >&2\n'
+              'exec "{run}" "$@"'),
+    "forkbomb": ("", _PY_FORKS + 'exec "{run}" "$@"'),
+}
+
+
+def make_hostile(base: Path, names: list[str], problems: list[str], **paths) -> tuple[Path, Path]:
+    """``(submissions, problems)`` folders under ``base``: the HOSTILE submissions named,
+    their scripts filled in with ``paths``."""
+    submissions, problem_dir = base / "subs", base / "problems"
+    problem_dir.mkdir(parents=True)
+    for name in names:
+        make, run = HOSTILE[name]
+        folder = submissions / name
+        folder.mkdir(parents=True)
+        for script, body in (("make.sh", make), ("run.sh", run)):
+            (folder / script).write_text("#!/bin/sh\n" + body.format(
+                run=OUR_RUN, subs=submissions, **paths) + "\n")
+            (folder / script).chmod(0o755)
+    for problem in problems:
+        shutil.copy(COURSE / problem, problem_dir / problem)
+    return submissions, problem_dir

@@ -9,7 +9,7 @@ import pytest
 
 from grading.cli import main
 from grading.config import Limits, ScoreRule
-from grading.sandbox import Sandbox
+from grading.sandbox import Place, Sandbox
 from grading_fixtures import ROOT
 
 
@@ -36,13 +36,13 @@ def test_usage_errors_exit_2_with_the_usage_and_one_error_line(argv, capsys):
 
 
 def test_the_contained_command_sets_the_limits_before_the_program(tmp_path):
-    command = Sandbox(False, True, "").command(tmp_path, tmp_path, tmp_path / "log",
-                                               ["./run.sh", "-grad"], Limits(), 2.5)
-    done = subprocess.run([*command[:-2], "sh", "-c", "ulimit -t; ulimit -v; pwd; echo e >&2"],
-                          capture_output=True, text=True, timeout=10)
-    assert done.stdout.split() == ["4", str(Limits().memory_bytes // 1024), str(tmp_path)]
-    assert (tmp_path / "log").read_text() == "e\n"
+    place = Place(tmp_path, tmp_path, tmp=tmp_path / "tmp")
+    command = Sandbox("none", "").command(place, ["./run.sh", "-grad"], Limits(), 2.5)
     assert command[-2:] == ["./run.sh", "-grad"]
+    done = subprocess.run([*command[:-2], "sh", "-c", "ulimit -t; ulimit -v; ulimit -p; pwd; "
+                           "echo $TMPDIR; trap"], capture_output=True, text=True, timeout=10)
+    assert done.stdout.split() == ["4", str(Limits().memory_bytes // 1024), "64",
+                                   str(tmp_path), str(tmp_path / "tmp")]  # no signal ignored
 
 
 def test_rrt_grade_runs_as_a_module_and_says_what_it_needs():
