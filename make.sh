@@ -122,13 +122,22 @@ print(why_not_fresh(full=True) or "")' 2>&1) || why="the check failed: $why"
 }
 
 # The bytecode ./run.sh and ./rrt-validator read: .build/pycache, every module of the
-# checkout's packages and of what they import, each file written whole or not at all and
-# checked (a damaged one is written again). The launchers write what is missing there
-# themselves; this makes a checkout that will be read-only start as fast.
+# checkout's packages and of what they import, built afresh in a new folder (nothing already
+# there is read), each file checked whole, then renamed into place. The launchers write
+# what is missing there themselves; this makes a checkout that will be read-only start fast.
 compile_bytecode() {
     step "writing the launchers' bytecode into .build/pycache"
-    quietly .venv/bin/python -S -I -B -c 'import sys; sys.path.insert(0, sys.argv[1])
-from rrt_startup.bytecode import main; sys.exit(main())' "$PWD"
+    local folder=$PWD/.build/.pycache-$$
+    rm -rf "$folder" && mkdir -p "$folder"
+    if ! .venv/bin/python -S -I -B -X pycache_prefix="$folder" -c 'import sys
+sys.path.insert(0, sys.argv[1])
+from rrt_startup.bytecode import main
+sys.exit(main(sys.argv[2]))' "$PWD" "$folder" >>"$LOG" 2>&1; then
+        rm -rf "$folder"
+        step "failed: writing .build/pycache"
+        tail -n 30 "$LOG" >&2
+        exit 1
+    fi
 }
 
 # .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.

@@ -22,14 +22,16 @@ if [ ! -x "$python" ]; then
         exit 127
     fi
 fi
-exec "$python" -S -I -B -X pycache_prefix="$here/.build/pycache" -c '
+exec "$python" -S -I -B -c '
 import sys
 if sys.version_info < (3, 10):
     sys.stderr.write("run.sh: needs Python 3.10 or newer, %s is %s\n"
                      % (sys.executable, sys.version.split()[0]))
     sys.exit(127)
 import os
-sys.path.insert(0, os.path.abspath(sys.argv.pop(1)))
+here = os.path.abspath(sys.argv.pop(1))
+sys.pycache_prefix = os.path.join(here, ".build", "pycache")  # before any import of ours
+sys.path.insert(0, here)
 from rrt_startup.launch import planner
 planner()
 ' "$here" "$@"

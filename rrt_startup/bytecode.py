@@ -1,18 +1,20 @@
-"""Where the launchers read bytecode: only ``.build/pycache`` inside the checkout.
+"""Where the launchers read bytecode: the checkout's ``.build/pycache``, and for the
+interpreter's own files also the interpreter's own ``__pycache__``; nowhere else.
 
-``./run.sh`` and ``./rrt-validator`` start Python with ``-B`` (CPython itself writes
-no bytecode) and ``-X pycache_prefix=`` that folder, so the few modules Python loads
-before any of ours (``encodings``) are read from there too; :func:`install` then
-puts :class:`CheckedLoader` in front of every source module. A ``.pyc`` there is
-used only when its 16-byte header names the very source (the checkout's sources by
-their content, as CPython's checked-hash pycs; the interpreter's own files by size
-and modification time, as CPython judges them) and its code unmarshals; otherwise
-the module is compiled from its source and the result written back by
-:func:`write_verified`, whole or not at all, so a full disk leaves no short file.
-No folder outside the checkout (``~/.cache``, ``$XDG_CACHE_HOME``, ``/tmp``) is read,
-and a bare ``.pyc`` without its source is never imported. Whoever can write the
-checkout can change its sources too: a planner that cannot, cannot change what the
-launchers load.
+``./run.sh`` and ``./rrt-validator`` start Python with ``-B`` (CPython itself writes no
+bytecode), set ``sys.pycache_prefix`` to ``.build/pycache`` before importing anything of
+the checkout, and :func:`install` :class:`CheckedLoader` for every source module. A
+``.pyc`` is used only when its 16-byte header names the very source and its code
+unmarshals whole: the checkout's sources are keyed by their content (as CPython's
+checked-hash pycs) and read only from ``.build/pycache``; any other source (the
+standard library, ``.venv``'s site-packages) by size and modification time, as CPython
+judges them, from its own ``__pycache__`` or else from ``.build/pycache``. Otherwise
+the module is compiled from its source and written to ``.build/pycache`` by
+:func:`write_verified`, whole or not at all, so a full disk leaves no short file. No
+cache folder (``~/.cache``, ``$XDG_CACHE_HOME``, ``/tmp``) is read, and a bare ``.pyc``
+without its source is never imported. Whoever can write the checkout or the
+interpreter's install can change their sources too: a planner that cannot, cannot
+change what the launchers load.
 """
 
 from __future__ import annotations
@@ -29,7 +31,8 @@ import _imp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PYCACHE = os.path.join(ROOT, ".build", "pycache")
-"""The only folder the launchers read bytecode from (git-ignored)."""
+"""The checkout's bytecode folder (git-ignored)."""
+_VENV = os.path.join(ROOT, ".venv", "")
 _KEY = int.from_bytes(MAGIC_NUMBER, "little")  # CPython's key for its checked-hash pycs
 _CODE = type((lambda: None).__code__)  # (compile() costs ms at its first call)
 
@@ -42,9 +45,9 @@ def content_key(data: bytes) -> bytes:
 
 
 def by_content(source_path: str) -> bool:
-    """Whether a source's bytecode is keyed by content (the checkout's, .venv
-    included) rather than by size and modification time (the interpreter's)."""
-    return source_path.startswith(ROOT + os.sep)
+    """Whether a source is the checkout's own: its bytecode is keyed by content and
+    read only from ``.build/pycache``."""
+    return source_path.startswith(ROOT + os.sep) and not source_path.startswith(_VENV)
 
 
 def header(source_path: str, source: bytes | None) -> bytes:
@@ -56,6 +59,13 @@ def header(source_path: str, source: bytes | None) -> bytes:
     return (MAGIC_NUMBER + b"\x00\x00\x00\x00"
             + (int(status.st_mtime) & 0xFFFFFFFF).to_bytes(4, "little")
             + (status.st_size & 0xFFFFFFFF).to_bytes(4, "little"))
+
+
+def own_cache(source_path: str) -> str:
+    """Where CPython itself keeps a source's bytecode: ``__pycache__`` beside it."""
+    head, name = os.path.split(source_path)
+    stem = name.rpartition(".")[0]
+    return os.path.join(head, "__pycache__", f"{stem}.{sys.implementation.cache_tag}.pyc")
 
 
 def read_code(cached: str, expected: bytes):
@@ -104,7 +114,8 @@ def write_verified(path: str, data: bytes) -> bool:
 
 class CheckedLoader(SourceFileLoader):
     """A source module's loader that takes its bytecode only from a matching,
-    whole ``.pyc`` under ``sys.pycache_prefix``, and writes it with
+    whole ``.pyc`` (the checkout's: under ``sys.pycache_prefix``; others' also from
+    their own ``__pycache__``), and writes it under the prefix with
     :func:`write_verified` when it compiled the source."""
 
     writes = True
@@ -113,36 +124,43 @@ class CheckedLoader(SourceFileLoader):
 
     def get_code(self, fullname):
         path = self.get_filename(fullname)
-        source = self.get_data(path) if by_content(path) else None
+        own = by_content(path)
+        source = self.get_data(path) if own else None
         expected = header(path, source)
         cached = cache_from_source(path)
-        code = read_code(cached, expected)
-        if code is None:
-            code = self.source_to_code(self.get_data(path) if source is None else source, path)
-            if CheckedLoader.writes:
-                CheckedLoader.writes = write_verified(cached, expected + marshal.dumps(code))
+        for candidate in (cached,) if own else (own_cache(path), cached):
+            code = read_code(candidate, expected)
+            if code is not None:
+                return code
+        code = self.source_to_code(self.get_data(path) if source is None else source, path)
+        if CheckedLoader.writes:
+            CheckedLoader.writes = write_verified(cached, expected + marshal.dumps(code))
         return code
 
 
 def install(prefix: str = PYCACHE, check_loaded: bool = False) -> None:
     """Loads every source module imported from now on with :class:`CheckedLoader`,
-    its bytecode in ``prefix``, and writes the bytecode of the modules Python
-    loaded before where it is missing (``check_loaded``: or does not load)."""
+    its bytecode written under ``prefix``. The modules CPython loaded from
+    ``prefix`` before get theirs written where it is missing or of another source
+    (``check_loaded``: every module loaded from source, checked whole)."""
     sys.pycache_prefix = prefix
     sys.path_hooks.insert(0, FileFinder.path_hook((CheckedLoader, SOURCE_SUFFIXES),
                                                    (ExtensionFileLoader, EXTENSION_SUFFIXES)))
     sys.path_importer_cache.clear()  # the finders made so far use CPython's loader
     for module in list(sys.modules.values()):
         spec = getattr(module, "__spec__", None)
-        if (spec is not None and type(spec.loader) is SourceFileLoader
-                and not _cached_header_matches(spec.origin, check_loaded)):
+        if (spec is None or type(spec.loader) is not SourceFileLoader
+                or not (check_loaded or (spec.cached or "").startswith(prefix))):
+            continue
+        if not _cached_code_matches(spec.origin, whole=check_loaded):
             CheckedLoader(spec.name, spec.origin).get_code(spec.name)
 
 
-def _cached_header_matches(path: str, whole: bool) -> bool:
+def _cached_code_matches(path: str, whole: bool) -> bool:
     """Whether the pyc of ``path`` under the prefix begins as it must (``whole``:
     and unmarshals)."""
-    expected = header(path, _read(path) if by_content(path) else None)
+    with open(path, "rb") as file:
+        expected = header(path, file.read() if by_content(path) else None)
     cached = cache_from_source(path)
     if whole:
         return read_code(cached, expected) is not None
@@ -153,24 +171,20 @@ def _cached_header_matches(path: str, whole: bool) -> bool:
         return False
 
 
-def _read(path: str) -> bytes:
-    with open(path, "rb") as file:
-        return file.read()
+PACKAGES = ("rrt_startup", "planning_core", "rrt_cli", "validator")
+"""The packages the launchers import from."""
 
 
-def warm(packages: tuple[str, ...]) -> list[str]:
+def warm(packages: tuple[str, ...] = PACKAGES) -> list[str]:
     """Imports every module of ``packages`` (after :func:`install`), so that their
-    bytecode, and that of every module they import, is in the prefix and whole;
-    returns the modules that could not be imported (one line each)."""
+    bytecode, and that of every module they import, is in the prefix; returns the
+    modules that could not be imported (one line each)."""
     import importlib
     failed = []
     for package in packages:
-        folder = os.path.join(ROOT, package)
-        for directory, subdirectories, files in os.walk(folder):
+        for directory, subdirectories, files in os.walk(os.path.join(ROOT, package)):
             subdirectories[:] = sorted(d for d in subdirectories if d != "__pycache__")
-            for name in sorted(files):
-                if not name.endswith(".py") or name == "__main__.py":
-                    continue
+            for name in sorted(f for f in files if f.endswith(".py") and f != "__main__.py"):
                 relative = os.path.relpath(os.path.join(directory, name), ROOT)[:-3]
                 module = relative.replace(os.sep, ".").removesuffix(".__init__")
                 try:
@@ -180,19 +194,41 @@ def warm(packages: tuple[str, ...]) -> list[str]:
     return failed
 
 
-PACKAGES = ("rrt_startup", "planning_core", "rrt_cli", "validator")
-"""The packages the launchers import from."""
-
-
-def main(packages: tuple[str, ...] = PACKAGES) -> int:
-    """``./make.sh``'s step, in an interpreter started with ``-S -I -B``: the bytecode
-    of every module of ``packages`` and of what they import (the PDF's reportlab
-    too) in :data:`PYCACHE`, whole, and of the modules loaded before, checked whole;
-    a module that cannot be imported is one line on stderr (status 0 all the same:
-    it runs compiled from source)."""
-    install(check_loaded=True)
+def main(folder: str) -> int:
+    """``./make.sh``'s step, in an interpreter started with ``-S -I -B -X
+    pycache_prefix=FOLDER``, ``FOLDER`` a new empty folder beside :data:`PYCACHE` (so
+    that nothing already there is read): writes there the bytecode of every module
+    of :data:`PACKAGES` and of what they import (the PDF's reportlab too), checks
+    every file whole, then puts the folder in the place of :data:`PYCACHE`. A
+    module that cannot be imported is one line on stderr (it runs compiled from
+    source, status 0 all the same); a file that is not whole, status 1."""
+    install(folder, check_loaded=True)
     import site
     site.main()  # reportlab, as the validator's PDF imports it
-    for line in warm(packages):
+    for line in warm():
         sys.stderr.write(f"rrt_startup.bytecode: not imported: {line}\n")
+    broken = [str(path) for path in _pycs(folder) if not _whole(path)]
+    if broken:
+        sys.stderr.write(f"rrt_startup.bytecode: not whole: {broken[0]}\n")
+        return 1
+    old = f"{folder}.old"
+    if os.path.isdir(PYCACHE):
+        os.replace(PYCACHE, old)
+    os.replace(folder, PYCACHE)
+    import shutil
+    shutil.rmtree(old, ignore_errors=True)
     return 0
+
+
+def _pycs(folder: str) -> list[str]:
+    return [os.path.join(directory, name) for directory, _, files in os.walk(folder)
+            for name in files if name.endswith(".pyc")]
+
+
+def _whole(path: str) -> bool:
+    """Whether a pyc unmarshals whole (its header was checked when written)."""
+    try:
+        with open(path, "rb") as file:
+            return isinstance(marshal.loads(file.read()[16:]), _CODE)
+    except (OSError, EOFError, ValueError, TypeError):
+        return False
