@@ -132,16 +132,25 @@ class CheckedLoader(SourceFileLoader):
             code = read_code(candidate, expected)
             if code is not None:
                 return code
-        code = self.source_to_code(self.get_data(path) if source is None else source, path)
-        if CheckedLoader.writes:
-            CheckedLoader.writes = write_verified(cached, expected + marshal.dumps(code))
-        return code
+        return compile_and_cache(path, self.get_data(path) if source is None else source,
+                                 expected)
+
+
+def compile_and_cache(path: str, source: bytes, expected: bytes):
+    """``source``'s code, written with its header ``expected`` under the prefix
+    (unless a write failed before in this process)."""
+    code = compile(source, path, "exec", dont_inherit=True)
+    if CheckedLoader.writes:
+        CheckedLoader.writes = write_verified(cache_from_source(path),
+                                              expected + marshal.dumps(code))
+    return code
 
 
 def install(prefix: str = PYCACHE, check_loaded: bool = False) -> None:
     """Loads every source module imported from now on with :class:`CheckedLoader`,
-    its bytecode written under ``prefix``. The modules CPython loaded from
-    ``prefix`` before get theirs written where it is missing or of another source
+    its bytecode written under ``prefix``. The modules CPython loaded with
+    ``prefix`` before (this module among them) get theirs written there where it is
+    missing or of another source, since CPython reads them nowhere else
     (``check_loaded``: every module loaded from source, checked whole)."""
     sys.pycache_prefix = prefix
     sys.path_hooks.insert(0, FileFinder.path_hook((CheckedLoader, SOURCE_SUFFIXES),
@@ -152,16 +161,15 @@ def install(prefix: str = PYCACHE, check_loaded: bool = False) -> None:
         if (spec is None or type(spec.loader) is not SourceFileLoader
                 or not (check_loaded or (spec.cached or "").startswith(prefix))):
             continue
-        if not _cached_code_matches(spec.origin, whole=check_loaded):
-            CheckedLoader(spec.name, spec.origin).get_code(spec.name)
+        with open(spec.origin, "rb") as file:
+            source = file.read()
+        expected = header(spec.origin, source if by_content(spec.origin) else None)
+        if not _cached_code_matches(cache_from_source(spec.origin), expected, check_loaded):
+            compile_and_cache(spec.origin, source, expected)
 
 
-def _cached_code_matches(path: str, whole: bool) -> bool:
-    """Whether the pyc of ``path`` under the prefix begins as it must (``whole``:
-    and unmarshals)."""
-    with open(path, "rb") as file:
-        expected = header(path, file.read() if by_content(path) else None)
-    cached = cache_from_source(path)
+def _cached_code_matches(cached: str, expected: bytes, whole: bool) -> bool:
+    """Whether the pyc ``cached`` begins with ``expected`` (``whole``: and unmarshals)."""
     if whole:
         return read_code(cached, expected) is not None
     try:

@@ -11,12 +11,11 @@ user site, no current folder, and no bytecode from outside the checkout.
 from __future__ import annotations
 
 import sys
-import types
 
 from rrt_startup.bytecode import install
 
 
-class OnFirstUse(types.ModuleType):
+class OnFirstUse(type(sys)):  # a module type (types.ModuleType, without importing types)
     """Stands for a module until one of its names is used, then imports it (a
     look-up of a missing __dunder__, e.g. a scan of sys.modules, does not)."""
 
