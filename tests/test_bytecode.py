@@ -206,3 +206,29 @@ def test_outside_the_checkout_a_damaged_pyc_and_a_bare_pyc_are_never_loaded(tmp_
     assert (done.returncode, done.stdout, done.stderr) == (0, "source\nno sourceless\n", "")
     assert [marshal.loads(pyc.read_bytes()[16:]) for pyc in (tmp_path / "pycache").rglob(
         "plain.*.pyc")]  # compiled, and written whole under the prefix
+
+
+COUNT_COMPILES = """import atexit, builtins, sys
+compiled, real = [], builtins.compile
+def counting(source, filename, *args, **kwargs):
+    compiled.append(filename)
+    return real(source, filename, *args, **kwargs)
+builtins.compile = counting
+atexit.register(lambda: sys.stderr.write("compiled: %s\\n" % ",".join(compiled)))
+"""
+
+
+@pytest.mark.parametrize("interpreted", ["", "1"])
+def test_a_second_run_compiles_nothing(tmp_path, interpreted):
+    """Every module run.sh imports, those CPython loads before the checked loader
+    included, has its bytecode after one run: the next compiles no source."""
+    copy = checkout_copy(tmp_path, packages=("planning_core", "rrt_cli"))
+    code = (ROOT / "run.sh").read_text().split("-c '", 1)[1].split("\n' ", 1)[0]
+    env = dict(os.environ, RRT_INTERPRETED=interpreted)
+    for run in ("first", "second"):
+        with open(SPACE1, "rb") as problem:
+            done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", COUNT_COMPILES + code,
+                                   str(copy), "-seed", "1"], stdin=problem, capture_output=True,
+                                  text=True, env=env, timeout=120)
+        assert done.returncode == 0, done.stderr
+    assert done.stderr.splitlines()[-1] == "compiled: "
