@@ -32,6 +32,10 @@ import os
 here = os.path.abspath(sys.argv.pop(1))
 sys.pycache_prefix = os.path.join(here, ".build", "pycache")  # before any import of ours
 sys.path.insert(0, here)
-from rrt_startup.launch import planner
+try:
+    from rrt_startup.launch import planner
+except (EOFError, ValueError, TypeError, ImportError):  # a damaged file in .build/pycache:
+    sys.pycache_prefix = os.devnull  # read none, compile these few (and write them again)
+    from rrt_startup.launch import planner
 planner()
 ' "$here" "$@"

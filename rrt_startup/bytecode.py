@@ -148,10 +148,12 @@ def compile_and_cache(path: str, source: bytes, expected: bytes):
 
 def install(prefix: str = PYCACHE, check_loaded: bool = False) -> None:
     """Loads every source module imported from now on with :class:`CheckedLoader`,
-    its bytecode written under ``prefix``. The modules CPython loaded with
-    ``prefix`` before (this module among them) get theirs written there where it is
-    missing or of another source, since CPython reads them nowhere else
-    (``check_loaded``: every module loaded from source, checked whole)."""
+    its bytecode written under ``prefix``. The modules CPython loaded before with a
+    prefix (this module among them) get theirs written there where it is missing or
+    of another source, since CPython reads them nowhere else; checked whole when
+    they were not read from ``prefix`` (the launchers then found a damaged one) or
+    ``check_loaded`` (then every module loaded from source)."""
+    whole = check_loaded or sys.pycache_prefix != prefix
     sys.pycache_prefix = prefix
     sys.path_hooks.insert(0, FileFinder.path_hook((CheckedLoader, SOURCE_SUFFIXES),
                                                    (ExtensionFileLoader, EXTENSION_SUFFIXES)))
@@ -159,12 +161,12 @@ def install(prefix: str = PYCACHE, check_loaded: bool = False) -> None:
     for module in list(sys.modules.values()):
         spec = getattr(module, "__spec__", None)
         if (spec is None or type(spec.loader) is not SourceFileLoader
-                or not (check_loaded or (spec.cached or "").startswith(prefix))):
-            continue
+                or not check_loaded and spec.cached == own_cache(spec.origin)):
+            continue  # (Python's own start-up modules, from the interpreter's cache)
         with open(spec.origin, "rb") as file:
             source = file.read()
         expected = header(spec.origin, source if by_content(spec.origin) else None)
-        if not _cached_code_matches(cache_from_source(spec.origin), expected, check_loaded):
+        if not _cached_code_matches(cache_from_source(spec.origin), expected, whole):
             compile_and_cache(spec.origin, source, expected)
 
 
@@ -219,13 +221,25 @@ def main(folder: str) -> int:
     if broken:
         sys.stderr.write(f"rrt_startup.bytecode: not whole: {broken[0]}\n")
         return 1
-    old = f"{folder}.old"
-    if os.path.isdir(PYCACHE):
-        os.replace(PYCACHE, old)
-    os.replace(folder, PYCACHE)
-    import shutil
-    shutil.rmtree(old, ignore_errors=True)
+    _put_in_place(folder)
     return 0
+
+
+def _put_in_place(folder: str) -> None:
+    """Renames ``folder`` to :data:`PYCACHE`, the old one moved aside and removed (and
+    one a launcher made meanwhile: it tries three times)."""
+    import shutil
+    olds = [f"{folder}.old{attempt}" for attempt in range(3)]
+    for old in olds:
+        if os.path.isdir(PYCACHE):
+            os.replace(PYCACHE, old)
+        try:
+            os.replace(folder, PYCACHE)
+            break
+        except OSError:
+            continue
+    for leftover in (*olds, folder):
+        shutil.rmtree(leftover, ignore_errors=True)
 
 
 def _pycs(folder: str) -> list[str]:

@@ -164,10 +164,11 @@ def test_an_edit_that_keeps_size_and_time_is_run(tmp_path):
 @pytest.mark.parametrize("damage", [lambda data: data[:len(data) // 2],
                                     lambda data: data[:16] + bytes(len(data) - 16)],
                          ids=["cut-short", "zeroed"])
-def test_a_damaged_pyc_in_the_checkout_is_ignored_and_written_again(tmp_path, damage):
+@pytest.mark.parametrize("module", ["cli", "bytecode"])  # bytecode: read by CPython's loader
+def test_a_damaged_pyc_in_the_checkout_is_ignored_and_written_again(tmp_path, damage, module):
     copy, env = fake_planner(tmp_path)
     assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
-    [pyc] = (copy / ".build" / "pycache").rglob("cli.cpython-*.pyc")
+    [pyc] = (copy / ".build" / "pycache").rglob(f"{module}.cpython-*.pyc")
     whole = pyc.read_bytes()
     pyc.write_bytes(damage(whole))
     done = launch(["./run.sh"], copy, env)
@@ -234,3 +235,26 @@ def test_a_second_run_compiles_nothing(tmp_path, launcher, args, status, interpr
                                   text=True, env=env, timeout=120)
         assert done.returncode == status, done.stderr
     assert done.stderr.splitlines()[-1] == "compiled: "
+
+
+def test_make_sh_builds_the_bytecode_afresh_and_whole(tmp_path):
+    """./make.sh's step reads nothing already in .build/pycache and replaces the
+    folder whole, stray files gone."""
+    copy, env = fake_planner(tmp_path)
+    assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
+    pycache = copy / ".build" / "pycache"
+    [pyc] = pycache.rglob("bytecode.cpython-*.pyc")
+    pyc.write_bytes(pyc.read_bytes()[:200])
+    (pycache / "stray.pyc").write_bytes(b"stray")
+    make_sh = (ROOT / "make.sh").read_text()
+    step = make_sh[make_sh.index("compile_bytecode() {"):]
+    code = step.split("-c '", 1)[1].split("' ", 1)[0]
+    folder = copy / ".build" / ".pycache-test"
+    folder.mkdir()
+    done = subprocess.run([sys.executable, "-S", "-I", "-B", "-X", f"pycache_prefix={folder}",
+                           "-c", code, str(copy), str(folder)], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert not folder.exists() and not (pycache / "stray.pyc").exists()
+    assert len(whole_pycs(pycache)) > 5
+    assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
