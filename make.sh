@@ -108,7 +108,9 @@ compile_hot_modules() {
     why=$("${python[@]}" -c 'from rrt_startup.compiled import why_not_fresh
 print(why_not_fresh(full=True) or "")' 2>&1) || why="the check failed: $why"
     [ -z "$why" ] && return 0
-    case $why in *damaged*) step "note: $why: removed, to be rebuilt"; rm -rf .build/compiled ;; esac
+    case $why in
+        *damaged*) step "note: $why: removed, to be rebuilt"; rm -rf .build/compiled ;;
+    esac
     if ! command -v "${CC:-cc}" >/dev/null 2>&1; then
         step "note: no C compiler (${CC:-cc}); the hot modules run interpreted"; return 0
     fi

@@ -5,10 +5,10 @@
 # alone. It runs the interpreter ./make.sh set up (.venv) when there is one, else python3
 # from PATH, with -S -I: no site-packages and no PYTHON* variables, so nothing but the
 # standard library and this checkout is imported. Bytecode is read only from the checkout's
-# .build/pycache (git-ignored) and written there whole or not at all; CPython writes none
-# (-B), and nothing outside the checkout is read (rrt_startup/bytecode.py). The hot modules
-# ./make.sh compiled (.build/compiled, rrt_startup/compiled.py) are used when they match
-# their source, else the same source runs interpreted; -stats says which.
+# .build/pycache (git-ignored) and the interpreter's own, and written there whole or not at
+# all; CPython writes none (-B), and no cache folder is read (rrt_startup/bytecode.py). The
+# hot modules ./make.sh compiled (.build/compiled, rrt_startup/compiled.py) are used when
+# they match their source, else the same source runs interpreted; -stats says which.
 # stdout carries only the answer.
 case $0 in */*) here=${0%/*} ;; *) here=. ;; esac
 if [ -L "$0" ]; then here=$(dirname "$(readlink -f "$0")"); fi

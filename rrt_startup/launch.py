@@ -3,9 +3,10 @@ checkout (:func:`rrt_startup.bytecode.install`), then the planner with the compi
 build when it is fresh and whole, or the validator with the site-packages only for
 its PDF.
 
-Both launchers start Python with ``-S -I -B -X pycache_prefix=<checkout>/.build/pycache``
-and the checkout first on ``sys.path``: no site-packages, no ``PYTHON*`` variables, no
-user site, no current folder, and no bytecode from outside the checkout.
+Both launchers start Python with ``-S -I -B``, set ``sys.pycache_prefix`` to the
+checkout's ``.build/pycache`` and put the checkout first on ``sys.path``: no
+site-packages, no ``PYTHON*`` variables, no user site, no current folder, and bytecode
+only from the checkout and the interpreter's own install.
 """
 
 from __future__ import annotations
