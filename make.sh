@@ -4,9 +4,10 @@
 #                        benchmark tools, and OMPL's Python bindings where PyPI has a wheel
 #                        (OMPL is optional: the benchmarks and their tests skip it with a note)
 #   ./make.sh validator  the project and reportlab only: what the validator's PDF needs
+# Both write the bytecode the launchers read into .build/pycache (rrt_startup/bytecode.py).
 # "all" also compiles the hot modules with mypyc into .build/compiled where a C compiler is
 # (else one line says so; ./run.sh then runs the same source interpreted), and rebuilds them
-# whenever their source changed.
+# whenever a source's content changed or a built file is not as built (SHA-256 of each).
 # The planner needs none of this (./run.sh runs on a bare python3). Idempotent. Quiet: one
 # progress line per step on stderr; pip's output goes to .venv/make.log, shown on failure.
 # PYTHON=/path/to/python3 picks the interpreter (default: python3 on PATH, 3.10 or newer).
@@ -103,10 +104,13 @@ install() {
 # or mypy the same source runs interpreted.
 compile_hot_modules() {
     local python=(env -u RRT_INTERPRETED .venv/bin/python)
-    if "${python[@]}" -c 'import sys; from planning_core.compiled import BUILD_DIR, why_not_fresh
-sys.exit(why_not_fresh(BUILD_DIR) is not None)' 2>/dev/null; then
-        return 0
-    fi
+    local why
+    why=$("${python[@]}" -c 'from rrt_startup.compiled import why_not_fresh
+print(why_not_fresh(full=True) or "")' 2>&1) || why="the check failed: $why"
+    [ -z "$why" ] && return 0
+    case $why in
+        *damaged*) step "note: $why: removed, to be rebuilt"; rm -rf .build/compiled ;;
+    esac
     if ! command -v "${CC:-cc}" >/dev/null 2>&1; then
         step "note: no C compiler (${CC:-cc}); the hot modules run interpreted"; return 0
     fi
@@ -119,6 +123,25 @@ sys.exit(why_not_fresh(BUILD_DIR) is not None)' 2>/dev/null; then
     fi
 }
 
+# The bytecode ./run.sh and ./rrt-validator read: .build/pycache, every module of the
+# checkout's packages and of what they import, built afresh in a new folder (nothing already
+# there is read), each file checked whole, then renamed into place. The launchers write
+# what is missing there themselves; this makes a checkout that will be read-only start fast.
+compile_bytecode() {
+    step "writing the launchers' bytecode into .build/pycache"
+    local folder=$PWD/.build/.pycache-$$
+    rm -rf "$folder" && mkdir -p "$folder"
+    if ! .venv/bin/python -S -I -B -X pycache_prefix="$folder" -c 'import sys
+sys.path.insert(0, sys.argv[1])
+from rrt_startup.bytecode import main
+sys.exit(main(sys.argv[2]))' "$PWD" "$folder" >>"$LOG" 2>&1; then
+        rm -rf "$folder"
+        step "failed: writing .build/pycache"
+        tail -n 30 "$LOG" >&2
+        exit 1
+    fi
+}
+
 # .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.
 stamp=.venv/.installed
 [ "$target" = validator ] && stamp=.venv/.installed-validator
@@ -126,4 +149,5 @@ if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
     install
 fi
 [ "$target" = all ] && compile_hot_modules
+compile_bytecode
 exit 0

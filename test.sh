@@ -5,6 +5,6 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 ./make.sh
-env -u RRT_INTERPRETED .venv/bin/python -c 'from planning_core.compiled import activate
+env -u RRT_INTERPRETED .venv/bin/python -c 'from rrt_startup.compiled import activate
 print("test.sh: hot modules:", activate())' >&2
 exec .venv/bin/python -m pytest -n auto -q "$@"

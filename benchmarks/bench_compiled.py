@@ -218,7 +218,7 @@ def kernels(rounds: int) -> None:
         for mode in MODES if turn % 2 == 0 else MODES[::-1]:
             env = dict(os.environ, PYTHONPATH=str(ROOT), RRT_INTERPRETED=(
                 "1" if mode == "interpreted" else ""))
-            child = ("import sys; from planning_core.compiled import activate; "
+            child = ("import sys; from rrt_startup.compiled import activate; "
                      "state = activate(); from benchmarks.bench_compiled import kernel_times; "
                      "print(state.split()[0].rstrip(':'), *kernel_times())")
             out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True,

@@ -2,7 +2,7 @@
 fresh, as ``./run.sh`` runs it (the benchmark harness starts it this way). Silent
 about it: ``./run.sh -stats`` names the build that ran."""
 
-from planning_core.compiled import activate
+from rrt_startup.compiled import activate
 
 activate()  # before the planner's modules are imported
 

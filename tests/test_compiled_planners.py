@@ -8,7 +8,7 @@ import ast
 
 import pytest
 
-from planning_core import compiled
+from rrt_startup import compiled
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.setups import kinoplan_setup
 from tests.conftest import ROOT, run_planner

@@ -1,6 +1,7 @@
 """./run.sh and ./rrt-validator as a new user runs them: a bare python3, no set-up,
 nothing imported but the standard library and the checkout, nothing written into
-the checkout; the validator's PDF asks for reportlab in one line."""
+the checkout but its bytecode (.build/pycache, git-ignored); the validator's PDF asks
+for reportlab in one line."""
 
 from __future__ import annotations
 
@@ -28,12 +29,13 @@ HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def checkout_copy(tmp_path: Path, packages=PACKAGES) -> Path:
-    """The launchers and the packages, without .venv and without __pycache__."""
+    """The launchers, their start-up package and the packages, without .venv,
+    .build and __pycache__."""
     copy = tmp_path / "checkout"
     copy.mkdir()
     for script in ("run.sh", "rrt-validator"):
         shutil.copy2(ROOT / script, copy / script)
-    for package in packages:
+    for package in ("rrt_startup", *packages):
         shutil.copytree(ROOT / package, copy / package,
                         ignore=shutil.ignore_patterns("__pycache__"))
     return copy
@@ -51,11 +53,11 @@ def launch(command: list[str], cwd: Path, env_extra: dict | None = None,
                               cwd=cwd, env=env, timeout=120)
 
 
-def python_on_path(tmp_path: Path) -> str:
-    """A PATH whose python3 is this interpreter (no shim), the system's tools after it."""
+def python_on_path(tmp_path: Path, python: str = sys.executable) -> str:
+    """A PATH whose python3 is ``python`` (no shim), the system's tools after it."""
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir(exist_ok=True)
-    (bin_dir / "python3").symlink_to(sys.executable)
+    (bin_dir / "python3").symlink_to(python)
     return f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '/usr/bin:/bin')}"
 
 
@@ -79,17 +81,24 @@ def test_run_sh_starts_python_without_site_and_without_the_environment(tmp_path)
     assert args.strip() == "-grad -seed 3"
 
 
-def test_run_sh_plans_on_a_bare_python3_and_leaves_the_checkout_as_it_was(tmp_path):
+def test_run_sh_plans_on_a_bare_python3_and_writes_only_its_bytecode(tmp_path):
+    """Into the checkout's .build/pycache, git-ignored: nothing else in the checkout,
+    nothing in the user's cache folders."""
     copy = checkout_copy(tmp_path, packages=("planning_core", "rrt_cli"))
     before = files_under(copy)
-    cache = tmp_path / "cache"
-    env = {"PATH": python_on_path(tmp_path), "XDG_CACHE_HOME": str(cache)}
+    home, cache = tmp_path / "home", tmp_path / "cache"
+    home.mkdir()
+    env = {"PATH": python_on_path(tmp_path), "XDG_CACHE_HOME": str(cache), "HOME": str(home)}
     first = launch(["./run.sh", "-seed", "1"], copy, env)
     again = launch(["./run.sh", "-seed", "1"], copy, env)
     assert first.returncode == again.returncode == 0, first.stderr
     assert first.stdout == again.stdout and first.stdout.startswith("3\n")
-    assert files_under(copy) == before  # no .venv, no __pycache__
-    assert any(cache.rglob("cli.cpython-*.pyc"))  # the bytecode went to the cache
+    pycache = copy / ".build" / "pycache"
+    assert {path for path in files_under(copy) if pycache not in path.parents} == before | {
+        copy / ".build", pycache}  # no .venv, no __pycache__
+    assert any(pycache.rglob("cli.cpython-*.pyc"))  # the bytecode went there
+    assert not cache.exists() and not any(home.iterdir())
+    assert "/.build/\n" in (ROOT / ".gitignore").read_text()  # so git status stays clean
 
 
 def test_run_sh_without_python3_says_so_in_one_line(tmp_path):

@@ -1,12 +1,12 @@
-"""Compile the hot modules (planning_core.compiled.MODULES) with mypyc, and the C
-kernels (planning_core.compiled.KERNELS), into .build/compiled/.
+"""Compile the hot modules (rrt_startup.compiled.MODULES) with mypyc, and the C
+kernels (rrt_startup.compiled.KERNELS), into .build/compiled/.
 
 Usage: ``python tools/build_compiled.py`` (``./make.sh`` runs it when mypy and a C
 compiler are there). Needs mypy (mypyc) and a C compiler; exit 1 with one line
 when the build fails, 2 when a tool is missing. The build goes to a fresh
 temporary folder and replaces ``.build/compiled/`` only when complete, its
-manifest (interpreter suffix, SHA-256, size and modification time of each compiled
-source) written last.
+manifest (interpreter suffix, each compiled source's content key and SHA-256, each
+built file's size and SHA-256) written last.
 
 Flags are pinned so every build computes the same bits as the interpreter:
 ``-ffp-contract=off`` (no fused multiply-adds), never ``-march=native`` or
@@ -25,14 +25,13 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
-from planning_core import compiled  # noqa: E402
+from planning_core.compiled import generated_name  # noqa: E402
+from rrt_startup import compiled  # noqa: E402
 
 CFLAGS = "-O2 -ffp-contract=off -fno-fast-math"
 """Pinned C flags (appended after Python's own, so they win)."""
 MYPY_FLAGS = ["--follow-imports=skip", "--ignore-missing-imports",
               f"--cache-dir={ROOT / '.build' / 'mypy-cache'}"]
-GROUP = "rrt_hot"
-"""mypyc's shared library of the group: ``rrt_hot__mypyc`` at the top level."""
 
 _SETUP = """
 import sys
@@ -60,7 +59,7 @@ def _compile(work: Path) -> list[str]:
     """Run mypyc and the C compiler with the sources in ROOT, output in ``work``;
     returns the generated modules' names."""
     setup = work / "setup_hot.py"
-    setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=GROUP,
+    setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=compiled.GROUP,
                                    target=str(work / "c"), kernels=compiled.KERNELS))
     generated = _write_generated(work / "generated")
     paths = ",".join([compiled.source_path(module) for module in compiled.MODULES]
@@ -81,39 +80,39 @@ def _compile(work: Path) -> list[str]:
 
 def _write_generated(folder: Path) -> list[Path]:
     """The generated sources the planners run (family systems' fused slice loops),
-    each written as the top-level module its digest names (compiled.generated_name)."""
+    each written as the top-level module its digest names (generated_name)."""
     from planning_core.systems.family import generated_sources
     folder.mkdir()
     paths = []
     for source in generated_sources():
-        path = folder / f"{compiled.generated_name(source)}.py"
+        path = folder / f"{generated_name(source)}.py"
         path.write_text(source)
         paths.append(path)
     return paths
 
 
-def _manifest(digests: dict[str, str], generated: list[str]) -> str:
-    """The manifest's text: suffix, flags, generated modules, then ``key value``
-    lines (each source's digest, and its stamp under ``compiled.STAMP``)."""
-    lines = [f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}",
-             f"generated {' '.join(generated)}"]
-    lines += [f"{path} {digest}" for path, digest in digests.items()]
+def _manifest(sources: list[str], out: Path, generated: list[str]) -> str:
+    """The manifest's text: its format, the suffix, the flags, the generated
+    modules, each compiled source's line (as read before compiling: a source edited
+    meanwhile reads as changed) and each built file's, then its end."""
+    built = sorted(str(path.relative_to(out)) for path in out.rglob("*")
+                   if path.is_file() and path.name not in (compiled.MANIFEST, "build.log"))
+    lines = [compiled.FORMAT, f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}",
+             f"generated {' '.join(generated)}", *sources,
+             *(compiled.file_line(str(out), path) for path in built), compiled.END]
     return "\n".join(lines) + "\n"
 
 
 def build(target: Path = Path(compiled.BUILD_DIR)) -> Path:
     """Compile into ``target`` (replaced whole); returns it."""
-    # The digests are taken before compiling: a source edited meanwhile reads as stale.
-    digests = {path: compiled.source_digest(str(ROOT / path)) for path in compiled.sources()}
-    stamps = {compiled.STAMP + path: compiled.source_stamp(str(ROOT / path))
-              for path in compiled.sources()}
+    sources = [compiled.source_line(path) for path in compiled.sources()]
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".tmp-") as temporary:
         work = Path(temporary)
         generated = _compile(work)
         out = work / "out"
         shutil.copy2(work / "build.log", out / "build.log")
-        (out / compiled.MANIFEST).write_text(_manifest({**digests, **stamps}, generated))
+        (out / compiled.MANIFEST).write_text(_manifest(sources, out, generated))
         old = work / "old"
         if target.exists():
             target.rename(old)

@@ -79,7 +79,7 @@ def run_sh_start_loads() -> set[str]:
     script = (ROOT / "run.sh").read_text()
     code = script.split("-c '", 1)[1].split("\n' ", 1)[0]  # run.sh's own start
     with open(SPACE1, "rb") as problem:
-        done = subprocess.run([sys.executable, "-S", "-I", "-c", PROBE + code, str(ROOT),
+        done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", PROBE + code, str(ROOT),
                                "-seed", "1"], stdin=problem, capture_output=True, timeout=60)
     assert done.returncode == 0, done.stderr
     return set(done.stderr.decode().splitlines()[-1][len("loaded: "):].split(","))
@@ -115,8 +115,9 @@ print(before, NoDoc.__doc__, sys.modules["inspect"] is real, inspect.signature i
 
 
 def test_run_sh_imports_inspect_and_copy_when_used_and_once():
-    script = (ROOT / "run.sh").read_text()
-    stub = "import sys\n" + script[script.index("import types\n"):script.index("sys.path.insert")]
+    stub = (f"import sys\nsys.path.insert(0, {str(ROOT)!r})\n"
+            "from rrt_startup.launch import defer_dataclasses_imports\n"
+            "defer_dataclasses_imports()\n")
     done = subprocess.run([sys.executable, "-S", "-I", "-c", stub + STUB_PROBE],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr

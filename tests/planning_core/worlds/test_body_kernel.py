@@ -18,7 +18,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planning_core import compiled
+from rrt_startup import compiled
 from planning_core.worlds import segment_tests
 from planning_core.worlds.body_tests import (BodyTest, clearance, native_kernel,
                                              placed_coordinates)

@@ -1,0 +1,73 @@
+"""The Python side of ``./run.sh`` and ``./rrt-validator``: bytecode only from the
+checkout (:func:`rrt_startup.bytecode.install`), then the planner with the compiled
+build when it is fresh and whole, or the validator with the site-packages only for
+its PDF.
+
+Both launchers start Python with ``-S -I -B``, set ``sys.pycache_prefix`` to the
+checkout's ``.build/pycache`` and put the checkout first on ``sys.path``: no
+site-packages, no ``PYTHON*`` variables, no user site, no current folder, and bytecode
+only from the checkout and the interpreter's own install.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from rrt_startup.bytecode import install
+
+
+class OnFirstUse(type(sys)):  # a module type (types.ModuleType, without importing types)
+    """Stands for a module until one of its names is used, then imports it (a
+    look-up of a missing __dunder__, e.g. a scan of sys.modules, does not)."""
+
+    def __getattr__(self, name):
+        if name.startswith("__") and name.endswith("__"):
+            raise AttributeError(name)
+        if sys.modules.get(self.__name__) is self:
+            del sys.modules[self.__name__]
+        module = __import__(self.__name__)
+        self.__dict__.update(module.__dict__)
+        return getattr(module, name)
+
+
+def defer_dataclasses_imports() -> None:
+    """``inspect`` and ``copy``, which dataclasses imports but uses only for a class
+    without a docstring and for deep copies, are imported on first use."""
+    for name in ("inspect", "copy"):
+        sys.modules.setdefault(name, OnFirstUse(name))
+
+
+def planner() -> None:
+    """``./run.sh``: the planner, with the compiled hot modules when their build is
+    fresh and whole (``-stats`` says which ran)."""
+    install()
+    defer_dataclasses_imports()
+    from rrt_startup.compiled import activate
+    build = activate()
+    if "-stats" in sys.argv:
+        sys.stderr.write(f"rrt_cli build: {build}\n")
+    from rrt_cli.cli import entry_point
+    entry_point()
+
+
+def draws_pdf(argv: list[str]) -> bool:
+    """Whether the validator's command line (before ``--``) asks for the PDF: no
+    ``-noviz`` (or an abbreviation of it), no ``-h``."""
+    own = argv[:argv.index("--")] if "--" in argv else argv
+    return not any(a in ("-h", "--help") or len(a) > 2 and "-noviz".startswith(a) for a in own)
+
+
+def validator() -> None:
+    """``./rrt-validator``: the validator; the interpreter's site-packages are added
+    only to draw the PDF (reportlab), and its absence is one line and status 2."""
+    install()
+    if draws_pdf(sys.argv[1:]):
+        import site
+        site.main()  # the PDF: reportlab from the site-packages (-I: never the user's)
+        from importlib.util import find_spec
+        if find_spec("reportlab") is None:
+            sys.stderr.write("rrt-validator: drawing the PDF needs reportlab: run ./make.sh "
+                             "validator (or pip install reportlab), or pass -noviz\n")
+            sys.exit(2)
+    from validator.cli import entry_point
+    entry_point()
