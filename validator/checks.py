@@ -506,6 +506,7 @@ class _KinoplanValidation(_Validation):
         self.last_slices = []
         self.n = len(self.system.state_names)
         self.vertices = world_vertices(si.problem)
+        self.angles = [(i, v.name) for i, v in enumerate(si.space.variables) if v.angle]
 
     def invalid_place(self, state) -> str:
         return f"{_angle(*state[:self.n])}: {self.si.invalid_reason(state[:self.n])}"
@@ -557,11 +558,22 @@ class _KinoplanValidation(_Validation):
                                 "not a positive integer", line)
         return result
 
+    def angle_violation(self, state) -> str | None:
+        """An angle printed larger than the problem's numbers may be (angle
+        differences past it could overflow), or None."""
+        from planning_core.kinoplan import MAX_MAGNITUDE  # (loaded with a kinoplan problem)
+        for i, name in self.angles:
+            if abs(state[i]) > MAX_MAGNITUDE:
+                return (f"{name} = {state[i]!r} is larger than {MAX_MAGNITUDE:g} in magnitude "
+                        "(an angle may be printed in any turn within it)")
+        return None
+
     # 3
     def check_bounds(self) -> CheckResult:
         system, n = self.system, self.n
         for index, row in enumerate(self.plan.trajectory_rows()):
-            why = system.bounds_violation(row[:n]) or system.control_violation(row[n:])
+            why = (system.bounds_violation(row[:n]) or self.angle_violation(row)
+                   or system.control_violation(row[n:]))
             if why is not None:
                 line = self.line_of(index)
                 raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
@@ -637,7 +649,7 @@ class _GeometricValidation(_KinoplanValidation):
     # 3
     def check_bounds(self) -> CheckResult:
         for index, row in enumerate(self.plan.trajectory_rows()):
-            why = self.system.bounds_violation(row)
+            why = self.system.bounds_violation(row) or self.angle_violation(row)
             if why is not None:
                 line = self.line_of(index)
                 raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))

@@ -315,7 +315,7 @@ class KinodynamicFamily(FamilySystem):
         except ValueError as exc:
             return str(exc)
         if not self.kmin <= k <= self.kmax:
-            return f"K = {k} is outside the duration [{self.kmin}, {self.kmax}]"
+            return f"K = {k:.12g} is outside the duration [{self.kmin}, {self.kmax}]"
         return None
 
     def propagate_while(self, state: Sequence[float], control: Sequence[float],
