@@ -166,19 +166,25 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
 
 
 def _output_path_problem(path: str) -> str | None:
-    """Why ``-o path`` cannot be written, found before the planner runs, or None.
-    A missing file is created and removed again (only trying tells, e.g. in /proc)."""
+    """Why ``-o path`` cannot be written, found before the planner runs, or None. An
+    existing file is opened for writing (not truncated); for a missing one, a file of
+    our own unique name is made in its folder and removed, as the PDF is written
+    there and renamed: the target's name itself is never created nor removed (two
+    validators checking the same -o at once do not race)."""
     if not path:
         return "the file name is empty"
     if os.path.isdir(path):
         return "it is a folder"
     try:
-        if os.path.lexists(path):  # a dangling symlink's target is created, as open() would
+        if os.path.exists(path):
             # Non-blocking: a FIFO without a reader fails (ENXIO) instead of hanging.
-            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK | os.O_CREAT, 0o666))
-        else:
-            os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-            os.unlink(path)
+            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
+        else:  # missing, or a symlink to a missing file: its target's folder
+            import tempfile  # only for -o
+            folder = os.path.dirname(os.path.realpath(path))
+            fd, probe = tempfile.mkstemp(prefix=".rrt-validator-probe.", dir=folder)
+            os.close(fd)
+            os.unlink(probe)
     except OSError as error:
         return describe_os_error(error)
     return None
