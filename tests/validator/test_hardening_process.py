@@ -209,7 +209,7 @@ def test_run_planner_counts_the_stderr_it_cut(capfd):
     assert capfd.readouterr().err == "short\n" and not run.stderr_cut
 
 
-# ----- issue 28: without prctl and /proc ---------------------------------------------
+# ----- issue 28: without prctl and /proc, and Ctrl-C ---------------------------------
 
 
 def planner_with_child_in_its_group(pid_file: Path) -> list[str]:
@@ -239,3 +239,35 @@ def test_without_prctl_and_proc_the_planners_group_is_still_killed(monkeypatch, 
     run = run_planner(planner_with_child_in_its_group(pid_file), SPACE0.encode(), timeout=30)
     assert run.exit_code == 0 and run.output == VALID_POINT_PLAN.encode()
     assert gone_within(int(pid_file.read_text()), 2.0), "the planner's child outlived it"
+
+
+def run_validator_until(marker: Path, planner: list[str]) -> subprocess.Popen:
+    """``python -m validator -noviz -- PLANNER`` on space-0 with SIGINT as a shell
+    leaves it (not ignored), once the planner has written ``marker``."""
+    validator = subprocess.Popen([sys.executable, "-m", "validator", "-noviz", "--", *planner],
+                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, cwd=marker.parent,
+                                 env=dict(os.environ, PYTHONPATH=str(ROOT)),
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    validator.stdin.write(SPACE0.encode())
+    validator.stdin.close()
+    validator.stdin = None  # (for communicate)
+    deadline = time.monotonic() + 20
+    while not marker.exists():
+        assert time.monotonic() < deadline and validator.poll() is None
+        time.sleep(0.02)
+    return validator
+
+
+@needs_proc
+def test_ctrl_c_says_interrupted_exits_130_and_kills_the_planners_group(tmp_path, pid_files):
+    pid_file = pid_files("child.pid")
+    planner = planner_with_child_in_its_group(pid_file)
+    planner[2] = planner[2].replace(f"sys.stdout.write({VALID_POINT_PLAN!r})\n",
+                                    "time.sleep(60)\n")
+    validator = run_validator_until(pid_file, planner)
+    validator.send_signal(signal.SIGINT)
+    out, err = validator.communicate(timeout=20)
+    assert validator.returncode == 130 and out == b""
+    assert err.decode() == "rrt-validator: interrupted\n"
+    assert gone_within(int(pid_file.read_text()), 2.0), "the planner's child outlived us"
