@@ -176,7 +176,7 @@ def test_an_unrelated_argument_gets_no_hint():
         "rrt_cli: error: unrecognized arguments: -zzzzzz banana")
 
 
-# ----- issue 28, item 7: Ctrl-C -------------------------------------------------------
+# ----- issue 28, item 7: Ctrl-C, a folder on stdin ----------------------------------
 
 
 def test_ctrl_c_says_interrupted_and_exits_130():
@@ -201,3 +201,20 @@ def test_ctrl_c_says_interrupted_and_exits_130():
         os.close(terminal)
     assert planner.returncode == 130 and out == b""
     assert err.decode() == "rrt_cli: interrupted\n"
+
+
+@pytest.mark.xfail(strict=True, reason="Python stops before any of our code runs ('Fatal "
+                   "Python error: init_sys_streams: <stdin> is a directory'): the check "
+                   "belongs in the launchers, run.sh and rrt-validator")
+@pytest.mark.parametrize("tool", ["run.sh", "rrt-validator"])
+def test_a_folder_on_stdin_is_one_line_and_exit_2(tool, tmp_path):
+    args = ["-seed", "1"] if tool == "run.sh" else ["-noviz", "--", "true"]
+    folder = os.open(tmp_path, os.O_RDONLY)   # as the shell opens it for < folder
+    try:
+        done = subprocess.run([str(ROOT / tool), *args], stdin=folder, capture_output=True,
+                              timeout=60, cwd=tmp_path)
+    finally:
+        os.close(folder)
+    err = done.stderr.decode()
+    assert done.returncode == 2 and done.stdout == b"", err
+    assert err.count("\n") == 1 and "folder" in err and "Fatal Python error" not in err
