@@ -182,10 +182,9 @@ def _output_path_problem(path: str) -> str | None:
             # Non-blocking: a FIFO without a reader fails (ENXIO) instead of hanging.
             os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
         else:  # missing, or a symlink to a missing file: its target's folder
-            import tempfile  # only for -o
-            folder = os.path.dirname(os.path.realpath(path))
-            fd, probe = tempfile.mkstemp(prefix=".rrt-validator-probe.", dir=folder)
-            os.close(fd)
+            probe = os.path.join(os.path.dirname(os.path.realpath(path)),
+                                 f".rrt-validator-probe.{os.getpid()}.{os.urandom(8).hex()}")
+            os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
             os.unlink(probe)
     except OSError as error:
         return describe_os_error(error)
