@@ -27,7 +27,6 @@ from planning_core.space_information import (KinoplanSpaceInformation, SpaceInfo
                                              grid_space_information)
 from planning_core.vehicles import Vehicle
 from planning_core.worlds.grid import SAMPLE_STEP
-from planning_core.worlds.shapes import Disc, Rect
 
 # The SPEC 3 messages, verbatim.
 PARSE_ERROR = "Error parsing planner output!"
@@ -474,6 +473,7 @@ class _Validation:
 def world_vertices(problem) -> int:
     """What a family validity test's cost grows with: the obstacles' vertices (a
     rect 4, a disc 1, as the problem reader counts them) and the body's."""
+    from planning_core.worlds.shapes import Disc, Rect  # (loaded with a kinoplan problem)
     shapes = (*(problem.world.obstacles if problem.world is not None else ()),
               *((problem.system.body,) if problem.system.body is not None else ()))
     return sum(1 if isinstance(shape, Disc) else 4 if isinstance(shape, Rect)

@@ -228,5 +228,7 @@ def test_noviz_imports_no_reportlab_and_text_output_no_json(tmp_path):
     assert not any(m == "reportlab" or m.startswith("reportlab.") for m in modules)
     assert "validator.render_pdf" not in modules
     assert "json" not in modules
+    # A grid problem loads nothing of the family's (its reader, shapes, limits).
+    assert not {"planning_core.kinoplan", "planning_core.worlds.shapes"} & set(modules)
     with_pdf = imported_modules(["-json", *VALID], tmp_path)
     assert "reportlab" in with_pdf and "json" in with_pdf
