@@ -146,23 +146,17 @@ def test_a_slice_in_collision_fails_check_6():
     assert "slice" in fault.detail and "touches obstacle 1 (line 6)" in fault.detail
 
 
-def test_a_slice_of_the_last_line_in_collision_fails_check_5():
-    problem = PROBLEM + "circle 8 10 0.01\n"
+# The last line's body (a 1.5 square) runs from x = 6.5 to 9.5, its front edge at 10.1
+# one slice before the end and at 10.25 at the end: a disc at x = 8 is met mid-line,
+# one across [10.19, 10.21] by the last slice only (whose state no line prints).
+@pytest.mark.parametrize("disc, slice_", [("circle 8 10 0.01", 5), ("circle 10.2 10 0.01", 20)])
+def test_a_slice_of_the_last_line_in_collision_fails_check_5(disc, slice_):
+    problem = PROBLEM + disc + "\n"
     rows, _ = answer(problem)
     fault = failure(rows, problem)
     assert (fault.number, fault.message, fault.line) == (5, LAST_EDGE_COLLISION, 4)
-
-
-def test_an_obstacle_only_the_last_slice_of_the_last_line_touches_fails_check_5():
-    # The body (a 1.5 square) ends at x = 9.5, its front edge at 10.25; one slice
-    # before, at 10.1. The disc, [10.19, 10.21] across, touches the last slice only
-    # (the last line's end state is printed nowhere, so no other test sees it).
-    problem = PROBLEM + "circle 10.2 10 0.01\n"
-    rows, end = answer(problem)
-    fault = failure(rows, problem)
-    assert (fault.number, fault.message, fault.line) == (5, LAST_EDGE_COLLISION, 4)
-    assert "slice 20 of 20" in fault.detail and "touches obstacle 1 (line 6)" in fault.detail
-    assert check(rows, problem.replace("circle 10.2", "circle 10.3")).valid
+    assert f"slice {slice_} of 20" in fault.detail
+    assert check(rows, problem.replace(disc, "circle 10.3 10 0.01")).valid
 
 
 def test_an_end_outside_the_goal_fails_check_5():
