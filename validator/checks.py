@@ -609,7 +609,7 @@ class _KinoplanValidation(_Validation):
                             line, self.where(end))
         return self.passed(5, f"ends {_num(distance)} from the goal")
 
-    # 6 and 7: within the budget of states to test, then as the spaceship's
+    # 6 and 7: within the slice budget, then as the spaceship's
     def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
         plan = self.plan
         fields, lines = plan.trajectory_fields, plan.trajectory_count
