@@ -6,10 +6,7 @@ is simulated. The answers our planners give are far below."""
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-import time
+import resource
 
 import pytest
 
@@ -132,6 +129,15 @@ def test_our_planners_answers_pass_caps_50_times_lower(answer, problem):
 
 # ----- end to end: hostile planners through the validator ---------------------------
 
+
+def validator_cpu_seconds(args: list[str], problem: str, cwd):
+    """The validator's run and the CPU seconds it and its planner used (the measure of
+    its bound that does not grow when other work shares the machine)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = run_validator(args, problem, cwd, timeout=300)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return done, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
 ISSUE_ANSWER = ("import sys\n"
                 "lines = 999_995\n"
                 "out = sys.stdout\n"
@@ -145,14 +151,12 @@ ISSUE_ANSWER = ("import sys\n"
 def test_the_issues_26_mb_answer_is_judged_in_seconds_not_minutes(tmp_path):
     # 999 995 stationary lines of K = 250 (26 MB, under every other cap) kept the
     # validator busy 344 s.
-    began = time.monotonic()
-    done = run_validator(["-noviz", "--", *python_planner(ISSUE_ANSWER)],
-                         CAR1.format(obstacles=""), tmp_path, timeout=120)
-    elapsed = time.monotonic() - began
+    done, cpu = validator_cpu_seconds(["-noviz", "--", *python_planner(ISSUE_ANSWER)],
+                                      CAR1.format(obstacles=""), tmp_path)
     lines = done.stdout.decode().splitlines()
     assert done.returncode == 1 and lines[0] == TOO_LONG, done.stderr.decode()[-500:]
     assert "253998730 slices to check" in lines[1]
-    assert elapsed < 30
+    assert cpu < 30
 
 
 # At the cap, the costliest answer measured: a unicycle hugging the world's border (no
@@ -169,10 +173,8 @@ HUGGING = ("kinoplan 1\nsystem unicycle\nworld 0 0 400 400\n"
 
 
 @pytest.mark.slow
-def test_the_costliest_answer_at_the_cap_is_judged_within_30_s(tmp_path):
-    began = time.monotonic()
-    done = run_validator(["-noviz", "--", *python_planner(AT_THE_CAP)], HUGGING, tmp_path,
-                         timeout=120)
-    elapsed = time.monotonic() - began
+def test_the_costliest_answer_at_the_cap_is_judged_within_30_cpu_seconds(tmp_path):
+    done, cpu = validator_cpu_seconds(["-o", str(tmp_path / "viz.pdf"), "--",
+                                       *python_planner(AT_THE_CAP)], HUGGING, tmp_path)
     assert done.returncode == 0, done.stdout.decode()[-500:]
-    assert elapsed < 30
+    assert cpu < 30
