@@ -14,6 +14,10 @@ case $0 in */*) here=${0%/*} ;; *) here=. ;; esac
 if [ -L "$0" ]; then here=$(dirname "$(readlink -f "$0")"); fi
 
 case $here in /*) ;; *) here=$PWD/$here ;; esac
+if [ -d /dev/stdin ]; then  # Python itself would stop: "<stdin> is a directory"
+    echo "run.sh: stdin is a folder, not a problem file (use < problem.sw)" >&2
+    exit 2
+fi
 python=$here/.venv/bin/python
 if [ ! -x "$python" ]; then
     python=python3

@@ -22,6 +22,14 @@ from planning_core.worlds.link_tests import LinkTests
 
 State = tuple[float, ...]
 
+MAX_MAGNITUDE = 1e9
+"""The largest magnitude of a problem's numbers (and of an answer's angles): within
+it, a system's arithmetic over KMAX slices, the metric's and angle differences stay
+finite."""
+MIN_POSITIVE = 1e-9
+"""The least value of a problem's number that must be > 0 (a length, a step, a
+weight, a tolerance): car1's ``v / L`` stays finite, and no step is subnormal."""
+
 
 @dataclass(frozen=True)
 class FamilyGoal:

@@ -24,7 +24,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple, Optional
 
-from planning_core.kinoplan import KinoplanProblem, invalid_reason, make_goal
+from planning_core.kinoplan import (MAX_MAGNITUDE, MIN_POSITIVE, KinoplanProblem,
+                                   invalid_reason, make_goal)
 from planning_core.problem_text import ProblemFormatError
 from planning_core.systems import load as load_system
 from planning_core.systems.family import MAX_SLICES, FamilySystem
@@ -95,6 +96,9 @@ def number(token: Token, what: str) -> float:
         _fail(token, f"{what}: {_show(text)} is not a number")
     if not math.isfinite(value):
         _fail(token, f"{what}: {_show(text)} is not a finite number")
+    if abs(value) > MAX_MAGNITUDE:
+        _fail(token, f"{what}: {_show(text)} is larger than {MAX_MAGNITUDE:g} in magnitude "
+                     "(the limit of a problem's numbers)")
     return value
 
 
@@ -109,9 +113,12 @@ def integer(token: Token, what: str) -> int:
 
 
 def _positive(token: Token, what: str) -> float:
+    """A number > 0, and at least ``MIN_POSITIVE`` (a length, step, weight or tolerance)."""
     value = number(token, what)
     if not value > 0.0:
         _fail(token, f"{what} must be > 0, got {token.text}")
+    if value < MIN_POSITIVE:
+        _fail(token, f"{what} must be at least {MIN_POSITIVE:g}, got {token.text}")
     return value
 
 
@@ -283,10 +290,8 @@ def _param(r: _Reading, item: Item) -> None:
         has = ", ".join(cls.params) if cls.params else "none"
         _fail(name_t, f"param: {cls.name} has no parameter {_show(name)} (its parameters: {has})")
     _once(r, item.keyword, f"param {name}")
-    value = number(value_t, f"param {name}")
-    if name in cls.positive_params and not value > 0.0:
-        _fail(value_t, f"param {name} must be > 0, got {value_t.text}")
-    r.params[name] = value
+    positive = name in cls.positive_params
+    r.params[name] = (_positive if positive else number)(value_t, f"param {name}")
 
 
 def _bound(r: _Reading, item: Item) -> None:

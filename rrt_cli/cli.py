@@ -8,7 +8,8 @@ system, RRT-Connect, PRM and PRM* for the geometric ones (arm2, rigid2), and
 
 Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
 its reader gone), 2 bad usage or bad problem, 3 no solution within the limits (or
-the goal is certainly unreachable). Writes to stderr never change the status.
+the goal is certainly unreachable), 130 interrupted (Ctrl-C, one line). Writes to
+stderr never change the status.
 
 The usual command lines (exact option names, valid values) are read without
 argparse (:func:`quick_parse`, a start-up saving); argparse reads every other one
@@ -36,6 +37,7 @@ from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopConditi
 EXIT_SOLVED = 0
 EXIT_OUTPUT_FAILED = 1
 EXIT_NO_SOLUTION = 3
+EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as shells report it
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
 DEFAULT_PLANNER = "rrt"
@@ -47,7 +49,8 @@ def build_parser() -> cli_args.OneLineErrorParser:
         description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
                     "problem); print the trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "
-               "2 bad usage or bad problem, 3 no solution within the limits.")
+               "2 bad usage or bad problem, 3 no solution within the limits, 130 interrupted "
+               "(Ctrl-C).")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default=DEFAULT_PLANNER, choices=sorted(PLANNERS),
                         help="planning algorithm (default: rrt)")
@@ -203,7 +206,8 @@ def entry_point() -> None:
     try:
         status = main()
     except KeyboardInterrupt:
-        status = 130
+        say("rrt_cli: interrupted")
+        status = EXIT_INTERRUPTED
     except MemoryError:  # reading a huge problem, or printing a huge answer
         say(f"rrt_cli: out of memory: {OUT_OF_MEMORY_MESSAGE}")
         status = EXIT_NO_SOLUTION

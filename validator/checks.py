@@ -72,6 +72,16 @@ class Limits:
     """Tree rows past this many are parsed and counted but not kept (nor drawn)."""
     max_motion_samples: int = 1_000_000
     """Geometric family: more samples fail check 6 with TOO_LONG (6-16 us each)."""
+    max_slices: int = 1_200_000
+    """Kinodynamic family: the slices re-simulated and tested, each line's K plus
+    ``line_cost`` (its printed state's test, its checks); more fail check 6 (the
+    last line alone: check 5) with TOO_LONG before any is simulated."""
+    line_cost: int = 4
+    """What one line of a kinodynamic answer costs besides its K slices, in slices."""
+    world_vertices: int = 64
+    """The family's caps (samples, slices) hold in worlds of up to this many
+    vertices, the obstacles' and the body's; a larger world lowers them in
+    proportion, as a validity test there looks at more."""
     max_warnings_listed: int = 20
     """Corner-cut warnings listed one by one; the rest are summed up in one line."""
 
@@ -460,6 +470,16 @@ class _Validation:
         return (self.check_point_collisions(),)
 
 
+def world_vertices(problem) -> int:
+    """What a family validity test's cost grows with: the obstacles' vertices (a
+    rect 4, a disc 1, as the problem reader counts them) and the body's."""
+    from planning_core.worlds.shapes import Disc, Rect  # (loaded with a kinoplan problem)
+    shapes = (*(problem.world.obstacles if problem.world is not None else ()),
+              *((problem.system.body,) if problem.system.body is not None else ()))
+    return sum(1 if isinstance(shape, Disc) else 4 if isinstance(shape, Rect)
+               else len(shape.points) for shape in shapes)
+
+
 KINOPLAN_TOLERANCE = 1e-6
 """SPEC 5.5, checks 4 and 7: each variable within this, angles modulo 2 pi."""
 
@@ -487,6 +507,8 @@ class _KinoplanValidation(_Validation):
         self.path_length = self.final_state = None
         self.last_slices = []
         self.n = len(self.system.state_names)
+        self.vertices = world_vertices(setup.problem)
+        self.angles = [(i, v.name) for i, v in enumerate(si.space.variables) if v.angle]
 
     def invalid_place(self, state) -> str:
         return f"{_angle(*state[:self.n])}: {self.si.invalid_reason(state[:self.n])}"
@@ -500,6 +522,28 @@ class _KinoplanValidation(_Validation):
 
     def motion_summary(self, n: int) -> str:
         return f"{n} held controls, every slice valid"
+
+    def capped(self, cap: int) -> tuple[int, str]:
+        """``cap`` in this world, and where a world of more than
+        ``Limits.world_vertices`` vertices lowered it, a note saying so."""
+        share = self.limits.world_vertices
+        if self.vertices <= share:
+            return cap, ""
+        return cap * share // self.vertices, (f" in a world of {self.vertices} vertices "
+                                              f"(obstacles and body; {cap} in one of up to "
+                                              f"{share})")
+
+    def _slice_budget_or_fail(self, number: int, slices: int, lines: int, what: str,
+                              line: int) -> None:
+        """TOO_LONG, as a failure of check ``number``, when ``slices`` and ``lines``
+        pass ``Limits.max_slices`` in this world (before any slice is simulated)."""
+        per_line = self.limits.line_cost
+        work = slices + per_line * lines
+        cap, where = self.capped(self.limits.max_slices)
+        if work > cap:
+            raise self.fail(number, TOO_LONG, f"line {line}: {what} {slices} slices: {work} "
+                            f"slices to check (K + {per_line} a line) > {cap}, the most the "
+                            f"validator checks{where}", line)
 
     def other_answer_hint(self, error: PlanParseError) -> str:
         names = (*self.system.state_names, *self.system.control_names)
@@ -516,11 +560,22 @@ class _KinoplanValidation(_Validation):
                                 "not a positive integer", line)
         return result
 
+    def angle_violation(self, state) -> str | None:
+        """An angle printed larger than the problem's numbers may be (angle
+        differences past it could overflow), or None."""
+        from planning_core.kinoplan import MAX_MAGNITUDE  # (loaded with a kinoplan problem)
+        for i, name in self.angles:
+            if abs(state[i]) > MAX_MAGNITUDE:
+                return (f"{name} = {state[i]!r} is larger than {MAX_MAGNITUDE:g} in magnitude "
+                        "(an angle may be printed in any turn within it)")
+        return None
+
     # 3
     def check_bounds(self) -> CheckResult:
         system, n = self.system, self.n
         for index, row in enumerate(self.plan.trajectory_rows()):
-            why = system.bounds_violation(row[:n]) or system.control_violation(row[n:])
+            why = (system.bounds_violation(row[:n]) or self.angle_violation(row)
+                   or system.control_violation(row[n:]))
             if why is not None:
                 line = self.line_of(index)
                 raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
@@ -544,6 +599,7 @@ class _KinoplanValidation(_Validation):
         plan, goal = self.plan, self.pdef.goal
         last = plan.trajectory_count - 1
         row, line = plan.trajectory_row(last), self.line_of(last)
+        self._slice_budget_or_fail(5, int(row[-1]), 1, "the last line holds its control", line)
         slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
         self.last_slices = slices
         end = self.final_state = slices[-1]
@@ -554,6 +610,15 @@ class _KinoplanValidation(_Validation):
                             f"from the goal ({', '.join(goal.names)} within {goal.tolerance:g})",
                             line, self.where(end))
         return self.passed(5, f"ends {_num(distance)} from the goal")
+
+    # 6 and 7: within the slice budget, then as the spaceship's
+    def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
+        plan = self.plan
+        fields, lines = plan.trajectory_fields, plan.trajectory_count
+        slices = int(sum(plan.trajectory[fields - 1::fields]))
+        self._slice_budget_or_fail(6, slices, lines, f"the trajectory's {lines} lines hold "
+                                   "their controls", plan.trajectory_first_line)
+        return super().check_kinodynamic_motion()
 
     def _motion(self, index: int, row, line: int) -> tuple[tuple, float]:
         """A line's end state and its metric length over its slices."""
@@ -586,7 +651,7 @@ class _GeometricValidation(_KinoplanValidation):
     # 3
     def check_bounds(self) -> CheckResult:
         for index, row in enumerate(self.plan.trajectory_rows()):
-            why = self.system.bounds_violation(row)
+            why = self.system.bounds_violation(row) or self.angle_violation(row)
             if why is not None:
                 line = self.line_of(index)
                 raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
@@ -624,10 +689,11 @@ class _GeometricValidation(_KinoplanValidation):
             length += d
             count += max(1, math.ceil(d * scale))
         self.path_length = length
-        if count > self.limits.max_motion_samples:
+        cap, where = self.capped(self.limits.max_motion_samples)
+        if count > cap:
             raise self.fail(6, TOO_LONG, f"the path's segments make {count} samples at the "
                             f"check step {system.check:g}{' (-strict)' if self.strict else ''};"
-                            f" the validator tests at most {self.limits.max_motion_samples}",
+                            f" the validator tests at most {cap}{where}",
                             self.plan.trajectory_first_line)
         return count
 

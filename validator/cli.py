@@ -11,7 +11,8 @@ argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
 stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
 1 invalid, 2 usage error, bad problem or a PDF that could not be written, 3 the
 planner could not be started or timed out, 4 no verdict could be given (stdout
-closed or full, or a bug of ours). Writes to stderr never change the status.
+closed or full, or a bug of ours), 130 interrupted (Ctrl-C, one line). Writes to
+stderr never change the status.
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ EXIT_INVALID = 1
 EXIT_PLANNER_FAILED = 3
 EXIT_NO_VERDICT = 4  # no verdict could be given: stdout failed, or a validator bug
 EXIT_INTERNAL_ERROR = EXIT_NO_VERDICT
+EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as shells report it
 DEFAULT_PDF = "tree-viz.pdf"
 PROG = "rrt-validator"
 
@@ -56,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "the verdict and draw the tree in a PDF.",
         epilog="Exit status: 0 valid, 1 invalid, 2 usage error, bad problem or unwritable "
                "PDF, 3 the planner could not be started or timed out, 4 no verdict "
-               "could be given.")
+               "could be given, 130 interrupted (Ctrl-C).")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-strict", action="store_true",
                         help="a point segment cutting a blocked cell's corner between the "
@@ -166,19 +168,24 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
 
 
 def _output_path_problem(path: str) -> str | None:
-    """Why ``-o path`` cannot be written, found before the planner runs, or None.
-    A missing file is created and removed again (only trying tells, e.g. in /proc)."""
+    """Why ``-o path`` cannot be written, found before the planner runs, or None. An
+    existing file is opened for writing (not truncated); for a missing one, a file of
+    our own unique name is made in its folder and removed, as the PDF is written
+    there and renamed: the target's name itself is never created nor removed (two
+    validators checking the same -o at once do not race)."""
     if not path:
         return "the file name is empty"
     if os.path.isdir(path):
         return "it is a folder"
     try:
-        if os.path.lexists(path):  # a dangling symlink's target is created, as open() would
+        if os.path.exists(path):
             # Non-blocking: a FIFO without a reader fails (ENXIO) instead of hanging.
-            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK | os.O_CREAT, 0o666))
-        else:
-            os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-            os.unlink(path)
+            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
+        else:  # missing, or a symlink to a missing file: its target's folder
+            probe = os.path.join(os.path.dirname(os.path.realpath(path)),
+                                 f".rrt-validator-probe.{os.getpid()}.{os.urandom(8).hex()}")
+            os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+            os.unlink(probe)
     except OSError as error:
         return describe_os_error(error)
     return None
@@ -336,8 +343,9 @@ def entry_point() -> None:
             pass
     try:
         status = main()
-    except KeyboardInterrupt:
-        status = 130
+    except KeyboardInterrupt:  # Ctrl-C: run_planner has killed the planner's group
+        say(f"{PROG}: interrupted")
+        status = EXIT_INTERRUPTED
     except SystemExit as done:  # -h, a usage error, or a signal (_terminate)
         status = done.code
     except Exception as error:  # a bug of ours: say so in one line, not the planner's fault

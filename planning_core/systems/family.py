@@ -315,7 +315,7 @@ class KinodynamicFamily(FamilySystem):
         except ValueError as exc:
             return str(exc)
         if not self.kmin <= k <= self.kmax:
-            return f"K = {k} is outside the duration [{self.kmin}, {self.kmax}]"
+            return f"K = {k:.12g} is outside the duration [{self.kmin}, {self.kmax}]"
         return None
 
     def propagate_while(self, state: Sequence[float], control: Sequence[float],
@@ -348,14 +348,16 @@ class KinodynamicFamily(FamilySystem):
     def projection_axes(self, cells: int) -> list[tuple[int, float, float]]:
         """KPIECE1's grid: ``(index, low, scale)`` of each of :attr:`projection_names`,
         its bounds cut into ``cells`` equal cells; a state's cell on the axis is
-        ``floor((state[index] - low) * scale)``."""
+        ``floor((state[index] - low) * scale)``. Bounds too close for a finite scale
+        (equal, or a subnormal apart) make one cell (scale 0)."""
         space = self.space
         axes = []
         for name in self.projection_names:
             v = space.variables[space.index(name)]
-            if not (math.isfinite(v.low) and math.isfinite(v.high) and v.low < v.high):
+            if not (math.isfinite(v.low) and math.isfinite(v.high) and v.low <= v.high):
                 raise ValueError(f"{self.name}: projection on {name} needs finite bounds")
-            axes.append((space.index(name), v.low, cells / (v.high - v.low)))
+            scale = cells / (v.high - v.low) if v.low < v.high else 0.0
+            axes.append((space.index(name), v.low, scale if math.isfinite(scale) else 0.0))
         return axes
 
     def propagate(self, state: Sequence[float], control: Sequence[float]) -> State:

@@ -174,6 +174,30 @@ BAD = [
      "start theta: 'pi/0' divides by zero"),
     ("pi plus", text(CAR2, {5: "start x 1 y 1 theta +pi v 0"}), 5, 21, "'+pi' is not a number"),
     ("long line", text(CAR2, {4: "polygon" + " 1" * 20_002}), 4, 1, "more than 20002 words"),
+    # Finite values no arithmetic can use: over 1e9 in magnitude, or a positive one under 1e-9.
+    ("omega bound 1e308", text(PENDULUM, insert={3: "bound omega -1e308 1e308"}), 3, 13,
+     "bound omega LO: '-1e308' is larger than 1e+09 in magnitude"),
+    ("world 1e308", text(CAR1, {3: "world -1e308 -1e308 1e308 1e308"}), 3, 7,
+     "world: '-1e308' is larger than 1e+09 in magnitude"),
+    ("tau 1e308", text(PENDULUM, insert={3: "control tau -1e308 1e308"}), 3, 13,
+     "control tau LO: '-1e308' is larger than 1e+09 in magnitude"),
+    ("rk4 step 1e300", text(PENDULUM, insert={3: "integrate rk4 1e300"}), 3, 15,
+     "integrate DT: '1e300' is larger than 1e+09 in magnitude"),
+    ("L subnormal", text(CAR1, insert={3: "param L 1e-320"}), 3, 9,
+     "param L must be at least 1e-09, got 1e-320"),
+    ("rigid2 world 1e200", text(RIGID, {4: "world -1e200 -1e200 1e200 1e200"}), 4, 7,
+     "world: '-1e200' is larger than 1e+09 in magnitude"),
+    ("step tiny", text(PENDULUM, insert={3: "integrate euler 5e-324"}), 3, 17,
+     "integrate DT must be at least 1e-09, got 5e-324"),
+    ("pi form huge", text(CAR2, {5: "start x 1 y 1 theta 1e9*pi v 0"}), 5, 21,
+     "start theta: '1e9*pi' is larger than 1e+09 in magnitude"),
+    # Odd counts of polygon numbers past the first (5 numbers is also too few vertices).
+    ("polygon 7 numbers", text(CAR2, {4: "polygon 4 4 6 4 6 6 4"}), 4, 21,
+     "polygon: needs X Y pairs of at least 3 vertices, got 7 numbers"),
+    ("polygon 9 numbers", text(CAR2, {4: "polygon 4 4 6 4 6 6 4 6 5"}), 4, 25,
+     "polygon: needs X Y pairs of at least 3 vertices, got 9 numbers"),
+    ("body polygon 7 numbers", text(RIGID, {3: "body polygon 0 0 1 0 1 1 0"}), 3, 14,
+     "body polygon: needs X Y pairs for at least 3 vertices, got 7 numbers"),
 ]
 
 

@@ -174,3 +174,44 @@ def test_an_unrelated_argument_gets_no_hint():
     done = run_planner(["-zzzzzz", "banana"], SPACE0)
     assert done.stderr.decode().splitlines()[-1] == (
         "rrt_cli: error: unrecognized arguments: -zzzzzz banana")
+
+
+# ----- issue 28, item 7: Ctrl-C, a folder on stdin ----------------------------------
+
+
+def test_ctrl_c_says_interrupted_and_exits_130():
+    # The planner reads its problem from a terminal (a pty) until Ctrl-C; SIGINT as a
+    # shell leaves it, not ignored.
+    import pty
+    import select
+    import signal
+    terminal, stdin = pty.openpty()
+    planner = subprocess.Popen([str(ROOT / "run.sh"), "-seed", "1"], stdin=stdin,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    os.close(stdin)
+    try:
+        assert select.select([planner.stderr], [], [], 30)[0], "no notice within 30 s"
+        notice = planner.stderr.readline().decode()
+        assert notice == "rrt_cli: reading the problem from stdin (end it with Ctrl-D)\n"
+        planner.send_signal(signal.SIGINT)
+        out, err = planner.communicate(timeout=20)
+    finally:
+        planner.kill()
+        os.close(terminal)
+    assert planner.returncode == 130 and out == b""
+    assert err.decode() == "rrt_cli: interrupted\n"
+
+
+@pytest.mark.parametrize("tool", ["run.sh", "rrt-validator"])
+def test_a_folder_on_stdin_is_one_line_and_exit_2(tool, tmp_path):
+    args = ["-seed", "1"] if tool == "run.sh" else ["-noviz", "--", "true"]
+    folder = os.open(tmp_path, os.O_RDONLY)   # as the shell opens it for < folder
+    try:
+        done = subprocess.run([str(ROOT / tool), *args], stdin=folder, capture_output=True,
+                              timeout=60, cwd=tmp_path)
+    finally:
+        os.close(folder)
+    err = done.stderr.decode()
+    assert done.returncode == 2 and done.stdout == b"", err
+    assert err.count("\n") == 1 and "folder" in err and "Fatal Python error" not in err

@@ -81,6 +81,14 @@ def test_a_k_outside_the_duration_fails_check_3():
     assert "K = 21 is outside the duration [1, 20]" in fault.detail
 
 
+def test_a_k_of_1e308_is_named_in_a_few_digits_not_309():
+    rows, _ = answer()
+    rows[1] = rows[1][:-1] + (1e308,)
+    fault = failure(rows)
+    assert (fault.number, fault.message, fault.line) == (3, OUT_OF_BOUNDS, 3)
+    assert fault.detail == "line 3: K = 1e+308 is outside the duration [1, 20]"
+
+
 @pytest.mark.parametrize("k", [2.5, 0, -3])
 def test_a_k_that_is_no_positive_integer_fails_check_1(k):
     rows, _ = answer()
@@ -138,11 +146,17 @@ def test_a_slice_in_collision_fails_check_6():
     assert "slice" in fault.detail and "touches obstacle 1 (line 6)" in fault.detail
 
 
-def test_a_slice_of_the_last_line_in_collision_fails_check_5():
-    problem = PROBLEM + "circle 8 10 0.01\n"
+# The last line's body (a 1.5 square) runs from x = 6.5 to 9.5, its front edge at 10.1
+# one slice before the end and at 10.25 at the end: a disc at x = 8 is met mid-line,
+# one across [10.19, 10.21] by the last slice only (whose state no line prints).
+@pytest.mark.parametrize("disc, slice_", [("circle 8 10 0.01", 5), ("circle 10.2 10 0.01", 20)])
+def test_a_slice_of_the_last_line_in_collision_fails_check_5(disc, slice_):
+    problem = PROBLEM + disc + "\n"
     rows, _ = answer(problem)
     fault = failure(rows, problem)
     assert (fault.number, fault.message, fault.line) == (5, LAST_EDGE_COLLISION, 4)
+    assert f"slice {slice_} of 20" in fault.detail
+    assert check(rows, problem.replace(disc, "circle 10.3 10 0.01")).valid
 
 
 def test_an_end_outside_the_goal_fails_check_5():

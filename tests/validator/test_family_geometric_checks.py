@@ -154,3 +154,20 @@ def test_cli_checks_a_geometric_answer_json_without_check_7(tmp_path):
     assert [c["status"] for c in report["checks"]] == ["passed"] * 6 + ["not applicable"]
     done = validator(["-noviz", "--", *planner], ARM.format(goal=-1.5))
     assert done.returncode == 1 and done.stdout.decode().startswith(NOT_AT_GOAL)
+
+
+def test_angles_too_large_to_subtract_fail_check_3_not_the_validator(tmp_path):
+    # From theta1 = 1.7e308 to -1.7e308 the difference overflowed: a 'math domain
+    # error', exit 4 ("internal error") for what a hostile planner printed.
+    rows = [(0.0, 0.0), (1.7e308, 0.0), (-1.7e308, 0.0), (-1.0, 0.0)]
+    fault = failure(ARM.format(goal=-1), rows)
+    assert (fault.number, fault.message, fault.line) == (3, OUT_OF_BOUNDS, 3)
+    assert fault.detail == ("line 3: theta1 = 1.7e+308 is larger than 1e+09 in magnitude "
+                            "(an angle may be printed in any turn within it)")
+    assert check(ARM.format(goal=-1), [(0.0, 0.0), (1e9, 0.0), (-1.0, 0.0)]).checks[2].passed
+    path = tmp_path / "answer.txt"
+    path.write_text(answer(rows))
+    done = validator(["-o", str(tmp_path / "out.pdf"), "--", "sh", "-c",
+                      f"cat > /dev/null; cat '{path}'"], ARM.format(goal=-1))
+    assert done.returncode == 1 and done.stdout.decode().startswith(OUT_OF_BOUNDS)
+    assert b"internal error" not in done.stderr

@@ -207,3 +207,67 @@ def test_run_planner_counts_the_stderr_it_cut(capfd):
     run = run_planner(python_planner("import sys; sys.stderr.write('short\\n')"), b"",
                       timeout=30, stderr_cap=1000)
     assert capfd.readouterr().err == "short\n" and not run.stderr_cut
+
+
+# ----- issue 28: without prctl and /proc, and Ctrl-C ---------------------------------
+
+
+def planner_with_child_in_its_group(pid_file: Path) -> list[str]:
+    """A planner that starts a sleeper in its own process group (no pipes of ours),
+    waits until it says where it is, prints a valid plan and exits."""
+    sleeper = ("import os, sys, time\n"
+               "open(sys.argv[1] + '.tmp', 'w').write(str(os.getpid()))\n"
+               "os.rename(sys.argv[1] + '.tmp', sys.argv[1])\n"
+               "time.sleep(60)\n")
+    code = ("import os, subprocess, sys, time\n" + WAIT_FOR_FILE +
+            f"subprocess.Popen([sys.executable, '-c', {sleeper!r}, {str(pid_file)!r}],\n"
+            "                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,\n"
+            "                 stderr=subprocess.DEVNULL)\n"
+            f"wait_for({str(pid_file)!r})\n"
+            f"sys.stdout.write({VALID_POINT_PLAN!r})\n")
+    return python_planner(code)
+
+
+def test_without_prctl_and_proc_the_planners_group_is_still_killed(monkeypatch, pid_files):
+    # The module's fallback where prctl or /proc is missing: only the process group.
+    # With the subreaper and the /proc sweep gone, killing the planner alone (not its
+    # group) would leave its child running.
+    import validator.run_planner as module
+    monkeypatch.setattr(module, "_load_prctl", lambda: None)
+    monkeypatch.setattr(module, "_proc_table", lambda: None)
+    pid_file = pid_files("child.pid")
+    run = run_planner(planner_with_child_in_its_group(pid_file), SPACE0.encode(), timeout=30)
+    assert run.exit_code == 0 and run.output == VALID_POINT_PLAN.encode()
+    assert gone_within(int(pid_file.read_text()), 2.0), "the planner's child outlived it"
+
+
+def run_validator_until(marker: Path, planner: list[str]) -> subprocess.Popen:
+    """``python -m validator -noviz -- PLANNER`` on space-0 with SIGINT as a shell
+    leaves it (not ignored), once the planner has written ``marker``."""
+    validator = subprocess.Popen([sys.executable, "-m", "validator", "-noviz", "--", *planner],
+                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, cwd=marker.parent,
+                                 env=dict(os.environ, PYTHONPATH=str(ROOT)),
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    validator.stdin.write(SPACE0.encode())
+    validator.stdin.close()
+    validator.stdin = None  # (for communicate)
+    deadline = time.monotonic() + 20
+    while not marker.exists():
+        assert time.monotonic() < deadline and validator.poll() is None
+        time.sleep(0.02)
+    return validator
+
+
+@needs_proc
+def test_ctrl_c_says_interrupted_exits_130_and_kills_the_planners_group(tmp_path, pid_files):
+    pid_file = pid_files("child.pid")
+    planner = planner_with_child_in_its_group(pid_file)
+    planner[2] = planner[2].replace(f"sys.stdout.write({VALID_POINT_PLAN!r})\n",
+                                    "time.sleep(60)\n")
+    validator = run_validator_until(pid_file, planner)
+    validator.send_signal(signal.SIGINT)
+    out, err = validator.communicate(timeout=20)
+    assert validator.returncode == 130 and out == b""
+    assert err.decode() == "rrt-validator: interrupted\n"
+    assert gone_within(int(pid_file.read_text()), 2.0), "the planner's child outlived us"

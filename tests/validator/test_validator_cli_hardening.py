@@ -5,6 +5,7 @@ usual slips get a hint, and reportlab and json load only when they are used."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -92,6 +93,37 @@ def test_an_unwritable_pdf_is_a_usage_error_before_the_planner_runs(path, tmp_pa
     assert os.listdir(tmp_path) == []   # the probe left nothing behind
 
 
+PROBE_WATCH = """
+import json, os, sys
+target, existing = sys.argv[1], sys.argv[2]
+touched = []
+def watch(event, args):
+    if event in ("open", "os.remove", "os.rename", "os.replace") and args and str(args[0]) in (
+            target, existing):
+        touched.append((event, str(args[0]), args[2] if event == "open" else 0))
+sys.addaudithook(watch)
+from validator.cli import _output_path_problem
+assert _output_path_problem(target) is None and _output_path_problem(existing) is None
+print(json.dumps(touched))
+"""
+
+
+def test_the_pdf_probe_never_creates_nor_removes_the_target(tmp_path):
+    # It made and unlinked a missing target by name, which raced with a second
+    # validator checking the same -o (5 in 40 000 paired checks failed). Now: a file
+    # of its own name in the folder; an existing target is opened, never created.
+    target, existing = tmp_path / "viz.pdf", tmp_path / "old.pdf"
+    existing.write_bytes(b"%PDF old")
+    done = subprocess.run([sys.executable, "-c", PROBE_WATCH, str(target), str(existing)],
+                          capture_output=True, timeout=60, cwd=tmp_path,
+                          env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert done.returncode == 0, done.stderr.decode()
+    touched = json.loads(done.stdout)
+    assert [event for event, path, _ in touched] == ["open"]
+    assert touched[0][1] == str(existing) and not touched[0][2] & os.O_CREAT
+    assert sorted(os.listdir(tmp_path)) == ["old.pdf"] and existing.read_bytes() == b"%PDF old"
+
+
 def test_a_pdf_write_that_fails_at_the_end_is_exit_2_with_one_line(tmp_path):
     done = run_validator(["-o", "/dev/full", *VALID], SPACE0, tmp_path)
     assert done.returncode == 2
@@ -102,7 +134,6 @@ def test_a_pdf_write_that_fails_at_the_end_is_exit_2_with_one_line(tmp_path):
 
 
 def test_json_exit_status_is_the_exit_status(tmp_path):
-    import json
     done = run_validator(["-json", "-o", "/dev/full", *VALID], SPACE0, tmp_path)
     report = json.loads(done.stdout)
     assert done.returncode == 2 and report["exit_status"] == 2 and report["pdf"] is None
@@ -197,5 +228,7 @@ def test_noviz_imports_no_reportlab_and_text_output_no_json(tmp_path):
     assert not any(m == "reportlab" or m.startswith("reportlab.") for m in modules)
     assert "validator.render_pdf" not in modules
     assert "json" not in modules
+    # A grid problem loads nothing of the family's (its reader, shapes, limits).
+    assert not {"planning_core.kinoplan", "planning_core.worlds.shapes"} & set(modules)
     with_pdf = imported_modules(["-json", *VALID], tmp_path)
     assert "reportlab" in with_pdf and "json" in with_pdf
