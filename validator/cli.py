@@ -33,7 +33,7 @@ from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.setups import grid_setup, kinoplan_setup
 from planning_core.vehicles import Vehicle
-from validator.checks import (CHECK_NAMES, CHECK_TITLES, INVALID_VERDICT, CheckResult,
+from validator.checks import (CHECKS, INVALID_VERDICT, CheckResult,
                               ValidationReport, validate_plan)
 from validator.run_planner import DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun, run_planner
 
@@ -123,7 +123,8 @@ def report_text(report: ValidationReport) -> str:
 def _check_json(number: int, result: CheckResult | None, applicable: bool) -> dict:
     status = ("not applicable" if not applicable else "not run" if result is None
               else "passed" if result.passed else "failed")
-    return {"number": number, "name": CHECK_NAMES[number - 1], "title": CHECK_TITLES[number - 1],
+    check = CHECKS[number - 1]
+    return {"number": number, "name": check.name, "title": check.title,
             "status": status, "passed": bool(result and result.passed),
             "message": result.message if result else "",
             "detail": result.detail if result else "",
@@ -138,8 +139,8 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
     if isinstance(vehicle, Vehicle):
         kinodynamic = vehicle.is_spaceship
     by_number = {check.number: check for check in report.checks} if report else {}
-    checks = [_check_json(n, by_number.get(n), n <= 6 or bool(kinodynamic))
-              for n in range(1, 8)]
+    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic)))
+              for n, check in enumerate(CHECKS, 1)]
     failure = report.first_failure if report else None
     return {
         "verdict": ("planner failed" if report is None
