@@ -40,8 +40,23 @@ def write_gradebook(config: GradeConfig, rows: list[dict]) -> Path:
     with open(path, "w", newline="") as out:
         writer = csv.DictWriter(out, columns, lineterminator="\n")
         writer.writeheader()
-        writer.writerows(rows)
+        writer.writerows({**row, "submission": spreadsheet_text(row["submission"])}
+                         for row in rows)
     return path
+
+
+def spreadsheet_text(value: str) -> str:
+    """A submission's name as a spreadsheet cell that stays text: a leading ``=``,
+    ``+``, ``-``, ``@``, tab or carriage return would start a formula, so it gets a
+    ``'`` before it (as OWASP advises for CSV)."""
+    return "'" + value if value[:1] in ("=", "+", "-", "@", "\t", "\r") else value
+
+
+def terminal_text(value) -> str:
+    """What a submission named, for a terminal: control characters (escape
+    sequences among them) shown as ``\\xNN``, not sent."""
+    return "".join(char if char.isprintable() else f"\\x{ord(char):02x}"
+                   for char in str(value))
 
 
 _MARKDOWN = str.maketrans({char: "\\" + char for char in "\\`*_[]|~"})
@@ -104,7 +119,7 @@ def summary_table(rows: list[dict]) -> str:
     if not rows:
         return "no submissions\n"
     columns = list(rows[0])
-    cells = [columns] + [[str(row[c]) for c in columns] for row in rows]
+    cells = [columns] + [[terminal_text(row[c]) for c in columns] for row in rows]
     widths = [max(len(line[i]) for line in cells) for i in range(len(columns))]
     return "".join("  ".join(cell.ljust(width) if i == 0 else cell.rjust(width)
                              for i, (cell, width) in enumerate(zip(line, widths))).rstrip()
