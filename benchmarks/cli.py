@@ -49,7 +49,7 @@ from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import CsvAppender, read_csv, write_csv
 from benchmarks.shortest_path import shortest_lengths
-from planning_core.cli_args import EXIT_USAGE, OneLineErrorParser
+from cli_common import EXIT_USAGE, OneLineErrorParser
 from planning_core.vehicles import Vehicle
 
 RESULTS_DIR = Path(__file__).resolve().parent / "results"

@@ -25,7 +25,7 @@ from benchmarks.generator import problem_id
 from benchmarks.harness import RunSpec
 from benchmarks.ompl_log import LIBRARY, PROPERTIES, STATUS_NAMES, VERSION, experiment_name
 from benchmarks.rows import FIELD_NAMES, RunRow
-from planning_core.cli_args import parse_any_problem
+from cli_common import parse_any_problem
 
 DB_NAME = "runs.sqlite"
 _RENAMED = {"status": "harness_status"}
@@ -58,7 +58,7 @@ CREATE TABLE IF NOT EXISTS runs
 CREATE UNIQUE INDEX IF NOT EXISTS runs_key ON runs ({", ".join(_KEY)});
 CREATE TABLE IF NOT EXISTS harness (name TEXT PRIMARY KEY, value TEXT);
 """
-PACKAGES = ("planning_core", "rrt_cli", "validator", "benchmarks")
+PACKAGES = ("planning_core", "cli_common", "rrt_cli", "validator", "benchmarks")
 """Whose source a stored run's result depends on."""
 
 

@@ -16,11 +16,10 @@ import sys
 from pathlib import Path
 from typing import Sequence
 
+from cli_common import OneLineErrorParser, positive_float, positive_int, say, write_stdout
 from grading.config import MODE_FLAGS, GradeConfig, ScoreRule
 from grading.grade import Busy, Outcome, grade
 from grading.report import gradebook_rows, summary_table, write_gradebook, write_report
-from planning_core.cli_args import (OneLineErrorParser, positive_float,
-                                    positive_int, say, write_stdout)
 
 PROG = "rrt-grade"
 USAGE = (f"{PROG} --submissions DIR --problems DIR --out DIR [--modes point,grad,left] "

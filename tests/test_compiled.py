@@ -175,7 +175,7 @@ def test_the_family_runs_its_generated_code_compiled():
     probe = ("from rrt_startup.compiled import activate\nactivate()\n"
              "from planning_core import compiled\n"
              "from planning_core.systems.family import generated_sources\n"
-             "from planning_core.cli_args import parse_any_problem\n"
+             "from cli_common import parse_any_problem\n"
              "from planning_core.setups import kinoplan_setup\n"
              "import sys\nmodules = [compiled.generated_module(t) for t in generated_sources()]\n"
              "print(*(m.__file__ if m else 'missing' for m in modules))\n"
@@ -212,7 +212,7 @@ def test_a_world_with_compiled_tests_pickles():
     native object's __init__ takes arguments pickle does not give)."""
     fresh_or_skip()
     probe = ("import pickle\nfrom rrt_startup.compiled import activate\nactivate()\n"
-             "from planning_core.cli_args import parse_any_problem\n"
+             "from cli_common import parse_any_problem\n"
              "p = parse_any_problem(open('benchmarks/problems/family/arm2-pair1.kp').read())\n"
              "q = pickle.loads(pickle.dumps(p))\n"
              "assert q == p and q.world.segment_free(0, 0, 0.5, 0.5)\n"
@@ -239,7 +239,7 @@ def test_run_sh_stats_says_which_ran(disable):
 def test_no_compiled_module_inside_the_source_tree():
     """Python prefers an extension module to the .py beside it: none may be there."""
     suffixes = (".so", ".pyd")
-    strays = [path for package in ("planning_core", "rrt_cli", "validator")
+    strays = [path for package in ("planning_core", "cli_common", "rrt_cli", "validator")
               for path in (ROOT / package).rglob("*") if path.suffix in suffixes]
     assert strays == []
 

@@ -5,7 +5,7 @@
 
 A ``kinoplan 1`` problem (SPEC 5, first word ``kinoplan``) names its own system:
 the vehicle flags are then a usage error, the checks are SPEC 5.5's, and the PDF
-has the family's pages (render_family).
+has the family's pages (render_kinodynamic, render_geometric).
 
 argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
 stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
@@ -24,11 +24,10 @@ import stat
 import sys
 from typing import Sequence
 
-from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, is_kinoplan, looks_like_problem_file,
-                                    parse_any_problem, positive_float,
-                                    read_problem_text_from_stdin, reject_vehicle_flags,
-                                    reserve_standard_fds, say, vehicle_from_flags, write_stdout)
+from cli_common import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags, describe_os_error,
+                        is_kinoplan, looks_like_problem_file, parse_any_problem,
+                        positive_float, read_problem_text_from_stdin, reject_vehicle_flags,
+                        reserve_standard_fds, say, vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.setups import grid_setup, kinoplan_setup

@@ -1,4 +1,4 @@
-"""The family's PDF pages for the geometric systems (SPEC 5.5; issue 15).
+"""The family's PDF pages for the geometric systems (SPEC 5.5).
 
 arm2: the workspace with the obstacles, the arm at poses evenly spaced (in the
 metric) along the path and the path its tip draws; then the configuration-space
@@ -17,18 +17,18 @@ from typing import Sequence
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.kinoplan import state_validator
-from validator.render_family import legend_items, thinning, tree_note
-from validator.render_plot import (TAU, FamilyOptions, Frame, PageText, clip_to, draw_axes,
-                                   draw_dot, draw_failure, draw_goal, draw_obstacles,
-                                   draw_page_text, draw_polygons, frame_in, plot_area,
-                                   polyline_ops, stroke_ops)
-from validator.render_pdf import (FAILURE_RGB, FOOTPRINT_RGB, GOAL_RGB, OBSTACLE_GRAY,
-                                  SOLUTION_RGB, START_RGB, TREE_RGB, RenderOptions,
-                                  RenderSummary)
+from validator.render_page import (FAILURE_RGB, FOOTPRINT_RGB, GOAL_RGB, OBSTACLE_GRAY,
+                                   SOLUTION_RGB, START_RGB, TREE_RGB, FamilyOptions,
+                                   RenderOptions, RenderSummary, family_legend_items, thinning,
+                                   tree_note)
+from validator.render_plot import (TAU, Frame, PageText, clip_to, draw_axes, draw_dot,
+                                   draw_failure, draw_goal, draw_obstacles, draw_page_text,
+                                   draw_polygons, frame_in, plot_area, polyline_ops, stroke_ops)
 
 
 def geometric_pages(canvas: Canvas, problem, report, text: PageText, options: RenderOptions,
                     family: FamilyOptions) -> RenderSummary:
+    """arm2's workspace and configuration-space pages, or rigid2's workspace page."""
     plan = report.plan if report is not None else None
     path = []
     if plan is not None:
@@ -196,8 +196,8 @@ def _cspace_page(canvas: Canvas, problem, report, path, where, text: PageText,
     what = (f"Configuration space (theta1, theta2), wrapping at +-pi; grey: invalid "
             f"({family.cspace_cells} x {family.cspace_cells} cells tested); "
             + _what(report, path, tree))
-    legend = legend_items(bool(path), "tree edges" in tree, goal_drawn, where is not None,
-                          False, None, "tree or roadmap edges")
+    legend = family_legend_items(bool(path), "tree edges" in tree, goal_drawn,
+                                 where is not None, False, None, "tree or roadmap edges")
     legend.append(("obstacle", "grey: arm touches an obstacle or leaves the world"))
     draw_page_text(canvas, text, what, legend)
     canvas.showPage()
@@ -224,8 +224,8 @@ def _rigid_page(canvas: Canvas, problem, report, path, where, text: PageText,
     draw_axes(canvas, frame, "x", "y")
     what = (f"Workspace (x, y): the body at {len(poses)} poses along the path; "
             + _what(report, path, tree))
-    legend = legend_items(bool(path), "tree edges" in tree, goal_drawn, where is not None,
-                          bool(poses), world)
+    legend = family_legend_items(bool(path), "tree edges" in tree, goal_drawn,
+                                 where is not None, bool(poses), world)
     draw_page_text(canvas, text, what, legend)
     canvas.showPage()
     return summary

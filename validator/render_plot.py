@@ -1,11 +1,12 @@
-"""Plot pieces for the family's PDF pages (render_family, render_geometric).
+"""Plot pieces for the family's PDF pages (render_kinodynamic, render_geometric).
 
 A :class:`Frame` maps a data box (the workspace, the phase plane, the torus's
 square, time against a variable) into a rectangle of the page; everything is
 drawn clipped to it. Angle axes wrap: a polyline is unwrapped along its points
 and drawn once per turn it reaches into the frame, so a segment that crosses
 pi shows split at the frame's edges. The page's text bands, legend, tick steps
-and polyline writer are render_pdf's, so both PDFs read alike.
+and polyline writer are render_page's, so the grid's and the family's PDFs read
+alike.
 """
 
 from __future__ import annotations
@@ -18,30 +19,16 @@ from reportlab.lib.pagesizes import landscape, letter
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.worlds.shapes import ConvexPolygon, Disc, Rect
-from validator.render_pdf import (_AXIS_LEFT, _BOTTOM_SPACE, _MARGIN, _TOP_SPACE,
-                                  GOAL_RGB, OBSTACLE_GRAY, PageLayout, _captions, _draw_captions,
-                                  _draw_legend, _draw_line, _draw_title, _failure_cross,
-                                  _polyline_ops, _stroke, _tick_label, _tick_steps)
+from validator.render_page import (AXIS_LEFT, BOTTOM_SPACE, GOAL_RGB, MARGIN, OBSTACLE_GRAY,
+                                   TOP_SPACE, PageLayout, caption_lines, draw_captions,
+                                   draw_legend, draw_line, draw_title, failure_cross,
+                                   layout_polyline_ops, stroke, tick_label, tick_steps)
 
 TAU = 2.0 * math.pi
 PAGE = landscape(letter)
 _IDENTITY = PageLayout(0.0, 0.0, 0.0, 0.0, 1.0)
 _MAX_TURNS = 4  # a polyline reaching over more turns than this of an angle is not drawn
 _NAME_ROOM = 28.0  # right of the plot area: the x axis's name
-
-
-@dataclass(frozen=True)
-class FamilyOptions:
-    """What the family's pages draw, beyond render_pdf's budgets."""
-
-    footprints: int = 40
-    """About this many body footprints along a kinodynamic solution."""
-    poses: int = 12
-    """The arm or rigid body drawn at about this many poses along a geometric path."""
-    cspace_cells: int = 200
-    """The arm's configuration-space square is shaded from this many x this many tests."""
-    goal_rays: int = 72
-    """Vertices of a goal region's outline (found along rays from the goal)."""
 
 
 @dataclass(frozen=True)
@@ -81,9 +68,9 @@ class Frame:
 
 def plot_area() -> tuple[float, float, float, float]:
     """``(left, bottom, width, height)`` of the page's room for plots."""
-    left = _MARGIN + _AXIS_LEFT + 6.0
-    return (left, _BOTTOM_SPACE, PAGE[0] - left - _MARGIN - _NAME_ROOM,
-            PAGE[1] - _TOP_SPACE - _BOTTOM_SPACE - 12.0)
+    left = MARGIN + AXIS_LEFT + 6.0
+    return (left, BOTTOM_SPACE, PAGE[0] - left - MARGIN - _NAME_ROOM,
+            PAGE[1] - TOP_SPACE - BOTTOM_SPACE - 12.0)
 
 
 def frame_in(box: tuple[float, float, float, float], area, equal: bool = True,
@@ -111,22 +98,35 @@ class PageText:
     failed: bool
 
 
+def _values(names: Sequence[str], values: Sequence[float]) -> str:
+    return " ".join(f"{n} {v:.4g}" for n, v in zip(names, values))
+
+
+def family_heading(problem, report, label: str) -> str:
+    """The line under the verdict: problem, system, start, goal, -strict."""
+    goal = problem.goal
+    return (f"{label or 'problem'}: system {problem.system_name}, start "
+            f"{_values(problem.system.state_names, problem.start)}, goal "
+            f"{_values(goal.names, [v for _, v in goal.values])} within {goal.tolerance:g}"
+            + ("   -strict" if report is not None and report.strict else ""))
+
+
 def page_text(report, verdict: str, heading: str, notes: Sequence[str]) -> PageText:
     failure = report.first_failure if report is not None else None
     return PageText(verdict, heading, report is not None and report.valid,
-                    tuple(_captions(report, notes)), failure is not None)
+                    tuple(caption_lines(report, notes)), failure is not None)
 
 
 def draw_page_text(canvas: Canvas, text: PageText, what: str,
                    legend: list[tuple[str, str]]) -> None:
     """Verdict, heading and ``what`` this page shows above; failure and legend below."""
-    layout = PageLayout(PAGE[0], PAGE[1], 0.0, _BOTTOM_SPACE, 1.0)
-    _draw_title(canvas, layout, text.verdict, text.heading, text.valid)
+    layout = PageLayout(PAGE[0], PAGE[1], 0.0, BOTTOM_SPACE, 1.0)
+    draw_title(canvas, layout, text.verdict, text.heading, text.valid)
     canvas.setFillGray(0.0)
     canvas.setFont("Helvetica", 9.5)
-    _draw_line(canvas, layout, PAGE[1] - _MARGIN - 41, what, "Helvetica", 9.5)
-    _draw_captions(canvas, layout, text.captions, text.failed)
-    _draw_legend(canvas, layout, legend)
+    draw_line(canvas, layout, PAGE[1] - MARGIN - 41, what, "Helvetica", 9.5)
+    draw_captions(canvas, layout, text.captions, text.failed)
+    draw_legend(canvas, layout, legend)
 
 
 def clip_to(canvas: Canvas, frame: Frame) -> None:
@@ -148,9 +148,9 @@ def _axis_ticks(low: float, high: float, scale: float, angle: bool, gap: float
         step = math.pi / 2
         return [(k * step, _angle_label(k * step))
                 for k in range(math.ceil(low / step - 1e-9), math.floor(high / step + 1e-9) + 1)]
-    step, _ = _tick_steps(scale * 30.0 / gap)
+    step, _ = tick_steps(scale * 30.0 / gap)
     first = math.ceil(low / step - 1e-9)
-    return [(k * step, _tick_label(k * step))
+    return [(k * step, tick_label(k * step))
             for k in range(first, math.floor(high / step + 1e-9) + 1)]
 
 
@@ -168,7 +168,7 @@ def draw_axes(canvas: Canvas, frame: Frame, x_name: str, y_name: str,
            f"{frame.to_page(v, 0)[0]:.2f} {frame.bottom - 4:.2f} l" for v, _ in xs]
     ops += [f"{frame.left:.2f} {frame.to_page(0, v)[1]:.2f} m "
             f"{frame.left - 4:.2f} {frame.to_page(0, v)[1]:.2f} l" for v, _ in ys]
-    _stroke(canvas, ops, (0.0, 0.0, 0.0), 0.5)
+    stroke(canvas, ops, (0.0, 0.0, 0.0), 0.5)
     canvas.setFillGray(0.0)
     canvas.setFont("Helvetica", 7.5)
     if x_labels:
@@ -225,7 +225,7 @@ def polyline_ops(frame: Frame, points: Iterable[tuple[float, float]], out: list[
     for kx in turns_x:
         for ky in turns_y:
             dx, dy = kx * TAU - frame.x0, ky * TAU - frame.y0
-            _polyline_ops([(left + (x + dx) * sx, bottom + (y + dy) * sy) for x, y in points],
+            layout_polyline_ops([(left + (x + dx) * sx, bottom + (y + dy) * sy) for x, y in points],
                           _IDENTITY, spacing, out)
     return True
 
@@ -233,7 +233,7 @@ def polyline_ops(frame: Frame, points: Iterable[tuple[float, float]], out: list[
 def stroke_ops(canvas: Canvas, ops: list[str], rgb, width: float, every: int = 10_000) -> None:
     """Stroke ``ops`` as paths of at most ``every`` operators each."""
     for start in range(0, len(ops), every):
-        _stroke(canvas, ops[start:start + every], rgb, width)
+        stroke(canvas, ops[start:start + every], rgb, width)
 
 
 # ----- shapes -----------------------------------------------------------------------------
@@ -279,7 +279,7 @@ def draw_polygons(canvas: Canvas, frame: Frame, polygons: Iterable[ConvexPolygon
     ops: list[str] = []
     for polygon in polygons:
         points = polygon.points
-        _polyline_ops([frame.to_page(*p) for p in (*points, points[0])], _IDENTITY, 0.0, ops)
+        layout_polyline_ops([frame.to_page(*p) for p in (*points, points[0])], _IDENTITY, 0.0, ops)
     stroke_ops(canvas, ops, rgb, width)
 
 
@@ -298,7 +298,7 @@ def draw_failure(canvas: Canvas, frame: Frame, where: tuple[float, float] | None
             x = math.remainder(x, TAU)
         if frame.angle_y and math.isfinite(y):
             y = math.remainder(y, TAU)
-        _failure_cross(canvas, *frame.clamped(x, y), 6.0)
+        failure_cross(canvas, *frame.clamped(x, y), 6.0)
 
 
 # ----- the goal region --------------------------------------------------------------------
@@ -364,7 +364,6 @@ def draw_goal(canvas: Canvas, frame: Frame, goal, i: int, j: int, rays: int) -> 
                                  else goal.target[i],
                                  math.remainder(goal.target[j], TAU) if frame.angle_y
                                  else goal.target[j])
-            _stroke(canvas, [f"{x - 6:.2f} {y:.2f} m {x + 6:.2f} {y:.2f} l",
+            stroke(canvas, [f"{x - 6:.2f} {y:.2f} m {x + 6:.2f} {y:.2f} l",
                              f"{x:.2f} {y - 6:.2f} m {x:.2f} {y + 6:.2f} l"], GOAL_RGB, 1.0)
     return True
-

@@ -15,9 +15,9 @@ from tests.validator.test_family_checks import PROBLEM as CAR2, answer as car2_a
 from tests.validator.test_family_checks import printing, validator
 from tests.validator.test_family_geometric_checks import RIGID, answer as path_answer
 from validator.checks import validate_plan
-from validator.render_family import render_family
-from validator.render_pdf import RenderOptions, render_pdf
-from validator.render_plot import PAGE, FamilyOptions, frame_in, plot_area, polyline_ops
+from validator.render_page import FamilyOptions, RenderOptions
+from validator.render_pdf import render_pdf
+from validator.render_plot import PAGE, frame_in, plot_area, polyline_ops
 
 ARM = """kinoplan 1
 system arm2
@@ -38,8 +38,8 @@ def render(problem_text: str, output: str, options: RenderOptions = RenderOption
     problem = parse_kinoplan(problem_text)
     report = validate_plan(kinoplan_setup(problem), output)
     out = io.BytesIO()
-    summary = render_family(out, problem, report, report.verdict, ["a note"], "test.kp",
-                            options, FamilyOptions(cspace_cells=cells))
+    summary = render_pdf(out, problem, None, report, report.verdict, ["a note"], "test.kp",
+                         options, FamilyOptions(cspace_cells=cells))
     return report, summary, pdfium.PdfDocument(out.getvalue())
 
 

@@ -1,14 +1,13 @@
-"""The family's PDF (SPEC 5.5; issues 14 and 15): pages for a ``kinoplan 1`` problem.
+"""The family's PDF pages for the kinodynamic systems (SPEC 5.5).
 
 car2, unicycle, car1: the workspace (obstacles, the tree projected on (x, y), the
 solution re-simulated slice by slice, the body's footprint every few slices,
 start and goal region, the first failure), then state and control against time.
 The pendulum: its phase portrait (theta across, wrapping; omega up) with tree,
-solution and goal region, then state and control against time. arm2 and rigid2:
-render_geometric's pages.
+solution and goal region, then state and control against time.
 
 Bounded as the grid page is: the tree and the solution each get a budget of
-computed vertices (render_pdf.RenderOptions). A tree over its budget is thinned,
+computed vertices (render_page.RenderOptions). A tree over its budget is thinned,
 every k-th edge drawn, and the page says so; a solution over it is drawn up to
 the budget.
 """
@@ -21,60 +20,23 @@ from typing import Sequence
 
 from reportlab.pdfgen.canvas import Canvas
 
-from validator.render_plot import (PAGE, FamilyOptions, Frame, PageText, clip_to, draw_axes,
-                                   draw_dot, draw_failure, draw_goal, draw_obstacles,
-                                   draw_page_text, draw_polygons, frame_in, page_text,
-                                   plot_area, polyline_ops, stroke_ops)
-from validator.render_pdf import (FOOTPRINT_RGB, SOLUTION_RGB, START_RGB, TREE_RGB,
-                                  RenderOptions, RenderSummary)
+from validator.render_page import (FOOTPRINT_RGB, SOLUTION_RGB, START_RGB, TREE_RGB,
+                                   FamilyOptions, RenderOptions, RenderSummary,
+                                   family_legend_items, thinning, tree_note)
+from validator.render_plot import (Frame, PageText, clip_to, draw_axes, draw_dot, draw_failure,
+                                   draw_goal, draw_obstacles, draw_page_text, draw_polygons,
+                                   frame_in, plot_area, polyline_ops, stroke_ops)
 
 
-def render_family(out, problem, report, verdict: str, notes: Sequence[str] = (),
-                  label: str = "", options: RenderOptions = RenderOptions(),
-                  family: FamilyOptions = FamilyOptions()) -> RenderSummary:
-    """Write the family's pages for ``problem`` (a KinoplanProblem) into the binary
-    file ``out``; ``report`` None: the problem alone, with ``verdict`` and ``notes``."""
-    canvas = Canvas(out, pagesize=PAGE, pageCompression=1, invariant=1)
-    canvas.setTitle(f"rrt-validator: {label or 'problem'} ({problem.system_name})")
-    canvas.setCreator("rrt-validator")
-    text = page_text(report, verdict, heading(problem, report, label), notes)
-    if problem.system.kinodynamic:
-        summary = _kinodynamic_pages(canvas, problem, report, text, options, family)
-    else:
-        from validator.render_geometric import geometric_pages
-        summary = geometric_pages(canvas, problem, report, text, options, family)
-    canvas.save()
+def kinodynamic_pages(canvas: Canvas, problem, report, text: PageText, options: RenderOptions,
+                      family: FamilyOptions) -> RenderSummary:
+    """The plane page (workspace or phase portrait), then state and control against
+    time, for ``problem`` (a KinoplanProblem of a kinodynamic system)."""
+    plan = report.plan if report is not None else None
+    flown = fly(problem.system, plan, options.max_solution_points)
+    summary = _plane_page(canvas, problem, report, flown, text, options, family)
+    _time_page(canvas, problem, flown, text)
     return summary
-
-
-def _values(names: Sequence[str], values: Sequence[float]) -> str:
-    return " ".join(f"{n} {v:.4g}" for n, v in zip(names, values))
-
-
-def heading(problem, report, label: str) -> str:
-    """The line under the verdict: problem, system, start, goal, -strict."""
-    goal = problem.goal
-    return (f"{label or 'problem'}: system {problem.system_name}, start "
-            f"{_values(problem.system.state_names, problem.start)}, goal "
-            f"{_values(goal.names, [v for _, v in goal.values])} within {goal.tolerance:g}"
-            + ("   -strict" if report is not None and report.strict else ""))
-
-
-def thinning(count: int, cost: int, options: RenderOptions) -> int:
-    """Draw every k-th of ``count`` tree edges costing ``cost`` vertices in all."""
-    return max(1, math.ceil(cost / options.max_tree_points),
-               math.ceil(count / options.max_tree_edges_drawn))
-
-
-def tree_note(total: int, kept: int, stride: int) -> str:
-    if total == 0:
-        return "no tree"
-    note = f"{total} tree edges"
-    if stride > 1:
-        note += f" (thinned: one in {stride} drawn)"
-    if kept < total:
-        note += f" (the first {kept} kept)"
-    return note
 
 
 # ----- the solution and the tree, flown slice by slice -------------------------------------
@@ -152,15 +114,6 @@ def draw_states(canvas: Canvas, frame: Frame, polylines, i: int, j: int, rgb,
 
 # ----- pages ------------------------------------------------------------------------------
 
-def _kinodynamic_pages(canvas, problem, report, text: PageText, options: RenderOptions,
-                       family: FamilyOptions) -> RenderSummary:
-    plan = report.plan if report is not None else None
-    flown = fly(problem.system, plan, options.max_solution_points)
-    summary = _plane_page(canvas, problem, report, flown, text, options, family)
-    _time_page(canvas, problem, flown, text)
-    return summary
-
-
 def _plane_frame(problem) -> Frame:
     """The workspace box, or for a system without a world (the pendulum) its phase
     plane: the first variable (an angle) across, the second's bounds up."""
@@ -211,9 +164,9 @@ def _plane_page(canvas, problem, report, flown: Flown, text: PageText,
             f"re-simulated slice by slice ({_lines_note(flown)})"
             + (f", footprint every {every} slices" if footprints else "")
             + _length_note(report))
-    legend = legend_items(flown.lines > 0, total > 0, goal_drawn,
-                          failure is not None and failure.where is not None,
-                          footprints and flown.lines > 0, problem.world)
+    legend = family_legend_items(flown.lines > 0, total > 0, goal_drawn,
+                                 failure is not None and failure.where is not None,
+                                 footprints and flown.lines > 0, problem.world)
     draw_page_text(canvas, text, what, legend)
     canvas.showPage()
     return RenderSummary(len(range(0, kept, stride)), total, flown.lines, flown.total)
@@ -229,25 +182,6 @@ def _length_note(report) -> str:
     if report is None or report.path_length is None:
         return ""
     return f"; path length {report.path_length:.4g}"
-
-
-def legend_items(solution: bool, tree: bool, goal: bool, failure: bool, footprint: bool,
-                 world, tree_label: str = "tree edges") -> list[tuple[str, str]]:
-    items = []
-    if solution:
-        items.append(("solution", "red: solution"))
-    if tree:
-        items.append(("tree", f"blue-grey: {tree_label}"))
-    if footprint:
-        items.append(("footprint", "pink: body footprint along the solution"))
-    items.append(("start", "green: start"))
-    if goal:
-        items.append(("goal", "blue outline: goal region"))
-    if failure:
-        items.append(("failure", "magenta cross: first failure"))
-    if world is not None and world.obstacles:
-        items.append(("obstacle", "grey: obstacle"))
-    return items
 
 
 def _panel_range(values: Sequence[float], bounds: tuple[float, float]) -> tuple[float, float]:
