@@ -67,13 +67,14 @@ def rubric_section(report) -> list[str]:
     return lines + [""]
 
 
-def distribution(scores: list[float], full: float) -> list[str]:
+def distribution(scores: list[float], full: float, digits: int) -> list[str]:
     """The scores' summary line and a table of ten bins, highest first."""
     if not scores:
         return ["No submissions.", ""]
     lines = [f"{len(scores)} submissions; scores out of {full:g}: mean "
-             f"{statistics.mean(scores):.1f}, median {statistics.median(scores):.1f}, "
-             f"lowest {min(scores):g}, highest {max(scores):g}.", "",
+             f"{statistics.mean(scores):.{digits}f}, median "
+             f"{statistics.median(scores):.{digits}f}, lowest {min(scores):.{digits}f}, "
+             f"highest {max(scores):.{digits}f}.", "",
              "| score | submissions | |", "|---|---|---|"]
     bins = Counter(min(int(10 * score / full), 9) if full > 0 else 0 for score in scores)
     for index in range(9, -1, -1):
@@ -213,7 +214,8 @@ def submission_section(report, one: Scored) -> list[str]:
     if build.get("log"):
         built += f" ({link('log', build['log'], report.out)})"
     lines = [f"## {text(one.name)}", "",
-             f"- Score: **{one.score:g}** out of {report.rubric.full_score(report.items):g} "
+             f"- Score: **{one.score:.{report.rubric.digits}f}** out of "
+             f"{report.rubric.full_score(report.items):g} "
              f"({sum(row['valid'] for row in runs)} of {len(runs)} runs valid"
              + (f"; {flakes} flaky" if flakes else "") + ")",
              f"- Build: {built}",
@@ -242,7 +244,7 @@ def report_text(report, pairs) -> str:
     lines = ["# Grading report", ""] + rubric_section(report)
     lines += ["## Class summary", ""]
     lines += distribution([one.score for one in graded],
-                          report.rubric.full_score(report.items))
+                          report.rubric.full_score(report.items), report.rubric.digits)
     lines += pass_rates(report, graded) + slowest(report, graded) + flaky_runs(graded)
     lines += class_failures(graded) + similar_pairs(pairs)
     for one in graded:

@@ -171,8 +171,9 @@ def rubric_from_table(table: dict) -> Rubric:
     given = _values(table, "")
     if "mode_weights" in table:
         given["mode_weights"] = _mode_weights(table["mode_weights"])
-    if "scale" in table:
-        given["scale"] = _number(table["scale"], "scale", low=0.0, strict=True)
+    # A rubric file without a scale scores in its own units: the points of its weights.
+    given["scale"] = (_number(table["scale"], "scale", low=0.0, strict=True)
+                      if "scale" in table else None)
     entries = table.get("problems", [])
     if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
         raise RubricError("problems: expected [[problems]] tables")

@@ -152,10 +152,13 @@ def near_identical_sources(sources: dict[str, dict[str, set[int]]]) -> list[Pair
             holders[shingle].append(name)
     shared: Counter = Counter()
     size: Counter = Counter()
-    for names in holders.values():
+    dropped = set()
+    for shingle, names in holders.items():
         if len(names) < common:
             size.update(names)
             shared.update(combinations(sorted(names), 2))
+        else:
+            dropped.add(shingle)
     pairs = []
     for (first, second), count in shared.items():
         union = size[first] + size[second] - count
@@ -163,15 +166,16 @@ def near_identical_sources(sources: dict[str, dict[str, set[int]]]) -> list[Pair
             pairs.append(Pair(first, second, "near-identical sources",
                               f"{count} of their {union} distinct {SHINGLE}-token shingles "
                               f"shared ({count / union:.0%}); most alike: "
-                              f"{_most_alike(sources[first], sources[second])}",
+                              f"{_most_alike(sources[first], sources[second], dropped)}",
                               count / union))
     return pairs
 
 
-def _most_alike(first: dict[str, set[int]], second: dict[str, set[int]]) -> str:
-    """The two files, one of each, that share the most shingles."""
+def _most_alike(first: dict[str, set[int]], second: dict[str, set[int]],
+                dropped: set[int]) -> str:
+    """The two files, one of each, that share the most shingles (not the class's)."""
     def largest(files: dict[str, set[int]]) -> list[tuple[str, set[int]]]:
         return sorted(files.items(), key=lambda item: -len(item[1]))[:MOST_ALIKE_FILES]
-    best = max(((len(a & b), name_a, name_b) for name_a, a in largest(first)
+    best = max(((len((a & b) - dropped), name_a, name_b) for name_a, a in largest(first)
                 for name_b, b in largest(second)), default=(0, "", ""))
     return f"{best[1]} and {best[2]} ({best[0]} shingles)"
