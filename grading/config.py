@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from grading.rubric import (KINOPLAN, MODE_FLAGS, MODE_VEHICLES,  # noqa: F401
-                            PROBLEM_SUFFIXES, Rubric)
+                            PROBLEM_SUFFIXES, Item, Rubric)
 
 
 @dataclass(frozen=True)
@@ -62,6 +62,6 @@ class GradeConfig:
         return sorted(entry.name for entry in self.problems.iterdir()
                       if entry.is_file() and entry.suffix in PROBLEM_SUFFIXES)
 
-    def items(self) -> list:
-        """The rubric's items on these problems (grading.rubric.Item)."""
+    def items(self) -> list[Item]:
+        """The rubric's items on these problems."""
         return self.rubric.items(self.problem_names())

@@ -30,20 +30,22 @@ def dask_executor(address: str):
 def each_result(executor, jobs: int, tasks: Iterable[tuple],
                 idle: Callable[[], None] | None = None, tick: float = 1.0) -> Iterator:
     """Each task's result (a task: ``(function, *args)``) as it finishes, with at most
-    ``jobs`` submitted at once; ``idle()`` after each ``tick`` seconds of waiting for one."""
+    ``jobs`` submitted at once (the next ones before a result is handed on); ``idle()``
+    after each ``tick`` seconds of waiting for one."""
     tasks = iter(tasks)
     pending: set[cf.Future] = set()
+    done: set[cf.Future] = set()
     while True:
         while len(pending) < jobs:
             task = next(tasks, None)
             if task is None:
                 break
             pending.add(executor.submit(*task))
+        for future in done:  # handed on while the freed slots already run the next tasks
+            yield future.result()
         if not pending:
             return
         done, pending = cf.wait(pending, timeout=tick if idle else None,
                                 return_when=cf.FIRST_COMPLETED)
         if not done and idle:
             idle()
-        for future in done:
-            yield future.result()

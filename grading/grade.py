@@ -195,12 +195,15 @@ def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple],
     and one whose worker dies again gets a row that says so."""
     queue = _Queue(iter(tasks))
     pending: dict[cf.Future, tuple[tuple, bool]] = {}
+    ready: list[dict] = []
     while True:
         try:
             queue.submit(pool, jobs, pending)
             broken = False
         except BrokenProcessPool:  # it broke since the last wait
             broken = True
+        yield from ready  # stored while the freed workers already run the next tasks
+        ready = []
         if not pending and not broken:
             return
         if not broken:
@@ -216,9 +219,9 @@ def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple],
         for future in done:
             task, alone = pending.pop(future)
             if not isinstance(future.exception(), BrokenProcessPool):
-                yield future.result()
+                ready.append(future.result())
             elif alone:
-                yield _LOST[task[0]](*task[1:])
+                ready.append(_LOST[task[0]](*task[1:]))
             else:
                 queue.suspects.append(task)
 

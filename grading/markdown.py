@@ -11,7 +11,7 @@ from collections import Counter
 from pathlib import Path
 from typing import Iterable
 
-from grading.scores import Key, Scored, flaky, key, modes_used, relative_time
+from grading.scores import Key, Results, Scored, flaky, key, modes_used, relative_time
 from grading.text import link, text
 
 SLOWEST = 10     # runs in the class summary's table of the slowest
@@ -45,7 +45,7 @@ def times(value: float | None) -> str:
     return "-" if value is None else f"x{value:.2f}"
 
 
-def rubric_section(report) -> list[str]:
+def rubric_section(report: Results) -> list[str]:
     """The items: points, time limit, repeats, our planner's time on each."""
     full = report.rubric.full_score(report.items)
     lines = ["## Rubric", "",
@@ -83,7 +83,7 @@ def distribution(scores: list[float], full: float, digits: int) -> list[str]:
     return lines + [""]
 
 
-def pass_rates(report, graded: list[Scored]) -> list[str]:
+def pass_rates(report: Results, graded: list[Scored]) -> list[str]:
     """Valid runs over runs, per problem and mode, over the class (repeats counted)."""
     modes = modes_used(report.items)
     valid: Counter = Counter()
@@ -102,7 +102,7 @@ def pass_rates(report, graded: list[Scored]) -> list[str]:
     return lines + [""]
 
 
-def slowest(report, graded: list[Scored]) -> list[str]:
+def slowest(report: Results, graded: list[Scored]) -> list[str]:
     rows = sorted((row for one in graded for row in one.all_runs()
                    if row.get("wall_time") is not None),
                   key=lambda row: -row["wall_time"])[:SLOWEST]
@@ -153,7 +153,7 @@ def class_failures(graded: list[Scored]) -> list[str]:
     return lines + [""]
 
 
-def similar_pairs(pairs) -> list[str]:
+def similar_pairs(pairs: list) -> list[str]:
     lines = ["### Similar pairs to look at", "",
              "A flag for a person to look at, never a change of score: pairs whose valid "
              "answers are byte-identical on the same problem and mode (the same code with "
@@ -192,7 +192,7 @@ def where(rows: Iterable[dict], order: list[Key], repeats: dict[Key, int]) -> st
                      for problem, modes in by_problem.items())
 
 
-def submission_failures(report, one: Scored) -> list[str]:
+def submission_failures(report: Results, one: Scored) -> list[str]:
     """Each distinct failure of a submission once, with its count and where."""
     order = [key(item) for item in report.items]
     repeats = {key(item): item.repeats for item in report.items}
@@ -205,7 +205,7 @@ def submission_failures(report, one: Scored) -> list[str]:
             f"({where(rows, order, repeats)})" for what, rows in groups.items()]
 
 
-def submission_section(report, one: Scored) -> list[str]:
+def submission_section(report: Results, one: Scored) -> list[str]:
     """A submission: score, build, sandbox, times, the problem x mode table, failures."""
     build = report.builds.get(one.name, {})
     runs = one.all_runs()
@@ -238,7 +238,7 @@ def submission_section(report, one: Scored) -> list[str]:
     return lines + [""]
 
 
-def report_text(report, pairs) -> str:
+def report_text(report: Results, pairs: list) -> str:
     """The whole of report.md."""
     graded = report.graded
     lines = ["# Grading report", ""] + rubric_section(report)
