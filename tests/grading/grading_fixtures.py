@@ -8,7 +8,18 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = ROOT / "benchmarks" / "problems" / "course"
+FAMILY = ROOT / "benchmarks" / "problems" / "family"
 OUR_RUN = ROOT / "run.sh"
+
+# Two copies of one submission under different names (a fixed seed: the same answers),
+# and a third of its own (its own seed and words; it says its flags on stderr).
+_COPIED = ("# Team Hydra's planner: a fixed seed, so that every run repeats exactly.\n"
+           "seed=4242\nattempt=1\n"
+           'echo "hydra: attempt $attempt with seed $seed" >&2\n'
+           'exec "{run}" -seed "$seed" "$@"')
+_OTHER = ("# Team Kraken's planner: its own seed, its own words.\n"
+          'for flag in "$@"; do echo "kraken: flag $flag" >&2; done\n'
+          'exec "{run}" -seed 777 "$@"')
 
 # name -> (make.sh body, run.sh body); {outside}, {run} and {nap} are filled in.
 CLASS = {
@@ -21,7 +32,19 @@ CLASS = {
     "forks": ("", "sleep {nap}1 &\n(setsid sleep {nap}2 &)\n"
                   'exec "{run}" "$@"'),
     "escape": ("", 'echo x > "{outside}" 2>/dev/null\nexec "{run}" "$@"'),
+    "copy-a": ("", _COPIED),
+    "copy-b": ("", _COPIED),
+    "other": ("", _OTHER),
 }
+
+# Valid on alternate runs of each problem and mode: each run takes the next number of its
+# own (mkdir is atomic: repeats running at once never share one) in its folder, so only
+# without the sandbox, whose runs' writes are thrown away; odd numbers print garbage.
+FLAKY = ("", 'problem=$(cat)\n'
+             'key=$(printf "%s %s" "$problem" "$*" | cksum | cut -d" " -f1)\n'
+             'n=0\nwhile ! mkdir "run-$key-$n" 2>/dev/null; do n=$((n + 1)); done\n'
+             'if [ $((n % 2)) -eq 1 ]; then echo garbage; exit 0; fi\n'
+             'printf "%s\\n" "$problem" | exec "{run}" "$@"')
 
 
 def nap(base: Path) -> str:
@@ -49,8 +72,13 @@ def make_class(base: Path, names: list[str], problems: list[str]) -> tuple[Path,
     for name in names:
         make_submission(submissions, name, *CLASS[name], outside / f"{name}.txt")
     for problem in problems:
-        shutil.copy(COURSE / problem, problem_dir / problem)
+        shutil.copy(problem_file(problem), problem_dir / problem)
     return submissions, problem_dir, outside
+
+
+def problem_file(name: str) -> Path:
+    """A course problem (.sw) or a family one (.kp) of the checkout."""
+    return (FAMILY if name.endswith(".kp") else COURSE) / name
 
 
 # Hostile submissions: each tries what docs/grading.md says it cannot do, says on
