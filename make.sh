@@ -59,14 +59,16 @@ sys.exit(tuple(int(p) for p in pip.__version__.split(".")[:2]) < (21, 3))' 2>/de
     fi
 }
 
-# The console scripts rrt-planner and rrt-validator in .venv/bin become links to ./run.sh
-# and ./rrt-validator, which start faster (-S) than pip's. Removed before every pip run, so
+# The console scripts rrt-planner, rrt-validator and rrt-grade in .venv/bin become links to
+# ./run.sh, ./rrt-validator and ./rrt-grade, which start faster (-S) than pip's and read
+# bytecode only from the checkout. Removed before every pip run, so
 # that pip never writes through them.
-unlink_scripts() { rm -f .venv/bin/rrt-planner .venv/bin/rrt-validator; }
+unlink_scripts() { rm -f .venv/bin/rrt-planner .venv/bin/rrt-validator .venv/bin/rrt-grade; }
 link_scripts() {
     unlink_scripts  # pip's own
     ln -s ../../run.sh .venv/bin/rrt-planner
     ln -s ../../rrt-validator .venv/bin/rrt-validator
+    ln -s ../../rrt-grade .venv/bin/rrt-grade
 }
 
 PIP=(.venv/bin/python -m pip install --disable-pip-version-check --no-input)
