@@ -17,14 +17,15 @@ from typing import Sequence
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.kinoplan import state_validator
-from validator.render_geometry import invalid_cells, poses_along, thinning, tree_note
+from validator.render_geometry import (cell_runs, invalid_cells, poses_along, thinning,
+                                       tree_note)
 from validator.render_page import (FAILURE_RGB, GOAL_RGB, OBSTACLE_GRAY, POSE_RGB, SOLUTION_RGB,
-                                   START_FILL_RGB, START_RGB, TREE_RGB, FamilyOptions, RenderOptions,
-                                   RenderSummary, family_legend_items, stroke_ops)
+                                   START_FILL_RGB, START_RGB, TREE_RGB, FamilyOptions,
+                                   RenderOptions, RenderSummary, family_legend_items, stroke_ops)
 from validator.render_plot import (TAU, Frame, PageText, clip_to, draw_axes, draw_bodies,
-                                   draw_dot, draw_headings, draw_failure, draw_goal, draw_obstacles,
-                                   draw_page_text, draw_polygons, draw_start, new_page, no_answer,
-                                   polyline_ops)
+                                   draw_dot, draw_failure, draw_goal, draw_headings,
+                                   draw_obstacles, draw_page_text, draw_polygons, draw_start,
+                                   new_page, no_answer, polyline_ops)
 
 ARM_SQUARE = (-math.pi, -math.pi, math.pi, math.pi)
 
@@ -109,16 +110,9 @@ def _shade_invalid(canvas: Canvas, frame: Frame, invalid: bytes, cells: int) -> 
     ``invalid`` (runs along a row merged into one rectangle)."""
     step = TAU / cells
     width, height = step * frame.sx, step * frame.sy
-    runs: list[str] = []
-    for r in range(cells):
-        row = invalid[r * cells:(r + 1) * cells]
-        c = row.find(1)
-        while c >= 0:
-            end = row.find(0, c)
-            end = cells if end < 0 else end
-            x, y = frame.to_page(-math.pi + c * step, -math.pi + r * step)
-            runs.append(f"{x:.2f} {y:.2f} {(end - c) * width:.2f} {height:.2f} re")
-            c = row.find(1, end)
+    runs = [f"{x:.2f} {y:.2f} {(end - c) * width:.2f} {height:.2f} re"
+            for r, c, end in cell_runs(invalid, cells, cells)
+            for x, y in [frame.to_page(-math.pi + c * step, -math.pi + r * step)]]
     if runs:
         canvas.saveState()
         canvas.setFillGray(OBSTACLE_GRAY)

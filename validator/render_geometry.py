@@ -243,6 +243,19 @@ def poses_along(system, path: Sequence, count: int) -> list:
     return poses
 
 
+def cell_runs(cells: bytes, cols: int, rows: int) -> Iterator[tuple[int, int, int]]:
+    """``(row, first, end)`` of each run of filled cells (1) along each row of a grid
+    stored row by row from the bottom: how the pictures draw cells, a rectangle a run."""
+    for r in range(rows):
+        row = cells[r * cols:(r + 1) * cols]
+        c = row.find(1)
+        while c >= 0:
+            end = row.find(0, c)
+            end = cols if end < 0 else end
+            yield r, c, end
+            c = row.find(1, end)
+
+
 def invalid_cells(valid, cells: int) -> bytearray:
     """A ``cells`` x ``cells`` grid over the square [-pi, pi]^2, row by row from the
     bottom: 1 where the configuration at the cell's centre is not ``valid``."""

@@ -28,8 +28,9 @@ from reportlab.pdfgen.canvas import Canvas
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle
 from validator.checks import ValidationReport
-from validator.render_geometry import (SHIP_POINTS, caption_lines, grid_heading, grid_solution,
-                                       grid_tree_edge, rows_in_budget, tick_label, tick_steps)
+from validator.render_geometry import (SHIP_POINTS, caption_lines, cell_runs, grid_heading,
+                                       grid_solution, grid_tree_edge, rows_in_budget, tick_label,
+                                       tick_steps)
 from validator.render_page import (AXIS_LEFT, BLOCKED_GRAY, BOTTOM_SPACE, CORNER_RGB, GOAL_RGB,
                                    GRID_GRAY, MARGIN, SOLUTION_RGB, TOP_SPACE, TREE_RGB,
                                    PageLayout, RenderOptions, RenderSummary, draw_captions,
@@ -141,16 +142,8 @@ def _stroke_long_polyline(canvas: Canvas, points: Iterator[tuple[float, float]],
 def _draw_grid(canvas: Canvas, problem: Problem, layout: PageLayout) -> None:
     w, h, s = problem.width, problem.height, layout.scale
     ox, oy = layout.origin_x, layout.origin_y
-    runs = []
-    for row in range(h):
-        cells = problem.blocked[row * w:(row + 1) * w]
-        column = cells.find(1)
-        while column >= 0:
-            end = cells.find(0, column)
-            end = w if end < 0 else end
-            runs.append(f"{ox + s * column:.2f} {oy + s * row:.2f} "
-                        f"{s * (end - column):.2f} {s:.2f} re")
-            column = cells.find(1, end)
+    runs = [f"{ox + s * column:.2f} {oy + s * row:.2f} {s * (end - column):.2f} {s:.2f} re"
+            for row, column, end in cell_runs(problem.blocked, w, h)]
     if s >= 3.0:  # grid lines (under the blocked cells) where cells are big enough
         lines = [f"{ox + s * i:.2f} {oy:.2f} m {ox + s * i:.2f} {oy + s * h:.2f} l"
                  for i in range(1, w)]

@@ -23,13 +23,12 @@ from validator.render_geometry import (Flown, body_note, duration_note, fly, foo
                                        footprint_step, lines_note, panel_range, phase_box,
                                        thinning, tree_cost, tree_note, tree_polylines)
 from validator.render_page import (SOLUTION_RGB, START_FILL_RGB, START_RGB, TREE_RGB,
-                                   FamilyOptions,
-                                   RenderOptions, RenderSummary, family_legend_items,
-                                   stroke_ops)
+                                   FamilyOptions, RenderOptions, RenderSummary,
+                                   family_legend_items, stroke_ops)
 from validator.render_plot import (PAGE, Frame, PageText, clip_to, draw_axes, draw_bodies,
-                                   draw_failure, draw_headings, draw_goal, draw_obstacles, draw_page_text,
-                                   draw_start, frame_in, new_page, no_answer, plot_area,
-                                   polyline_ops)
+                                   draw_failure, draw_goal, draw_headings, draw_obstacles,
+                                   draw_page_text, draw_start, frame_in, new_page, no_answer,
+                                   plot_area, polyline_ops)
 
 
 def kinodynamic_pages(canvas: Canvas, problem, report, text: PageText, options: RenderOptions,

@@ -1,6 +1,7 @@
 """The validator's picture in the format ``-o``'s extension names: ``.pdf`` (the pages,
-render_pdf; also a name without an extension), ``.html`` (the browser view, render_html), ``.svg`` (the same drawing as
-the view, still, render_svg) or ``.png`` (the PDF's pages as one image, render_png).
+render_pdf; also a name without an extension), ``.html`` (the browser view,
+render_html), ``.svg`` (the same drawing as the view, still, render_svg) or ``.png``
+(the PDF's pages as one image, render_png).
 
 Each format's writer is imported only to draw one, and what it needs is found before
 the planner runs (missing_tool): the PDF and the PNG need reportlab (the PNG also

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from html import escape
 
 from validator.render_file import write_atomically
-from validator.render_geometry import TAU, axis_ticks
+from validator.render_geometry import TAU, axis_ticks, cell_runs
 
 LAYERS = ("grid", "obstacles", "tree", "footprints", "marks", "answer", "failure")
 _FONT = "font-family='Helvetica, Arial, sans-serif'"
@@ -93,17 +93,9 @@ def _cells(plot: _Plot, item: dict) -> list[str]:
     cols, rows, cells = item["cols"], item["rows"], item["cells"]
     x0, y0, x1, y1 = item["box"]
     cw, ch = (x1 - x0) / cols, (y1 - y0) / rows
-    runs = []
-    for r in range(rows):
-        row = cells[r * cols:(r + 1) * cols]
-        c = row.find(1)
-        while c >= 0:
-            end = row.find(0, c)
-            end = cols if end < 0 else end
-            left, top = plot.x(x0 + c * cw), plot.y(y0 + (r + 1) * ch)
-            runs.append(f"M{_n(left)} {_n(top)}h{_n((end - c) * cw * plot.sx)}"
-                        f"v{_n(ch * plot.sy)}h{_n(-(end - c) * cw * plot.sx)}z")
-            c = row.find(1, end)
+    runs = [f"M{_n(plot.x(x0 + c * cw))} {_n(plot.y(y0 + (r + 1) * ch))}"
+            f"h{_n((end - c) * cw * plot.sx)}v{_n(ch * plot.sy)}h{_n(-(end - c) * cw * plot.sx)}z"
+            for r, c, end in cell_runs(cells, cols, rows)]
     return [f"<path d='{''.join(runs)}' fill='{item['colour']}' stroke='{item['colour']}' "
             "stroke-width='0.3'/>"] if runs else []
 
@@ -116,7 +108,8 @@ def _polygon(plot: _Plot, flat) -> str:
 def _shapes(plot: _Plot, item: dict) -> list[str]:
     fill = item["fill"]
     out = [f"<rect x='{_n(plot.x(x0))}' y='{_n(plot.y(y1))}' width='{_n((x1 - x0) * plot.sx)}' "
-           f"height='{_n((y1 - y0) * plot.sy)}' fill='{fill}'/>" for x0, y0, x1, y1 in item["rects"]]
+           f"height='{_n((y1 - y0) * plot.sy)}' fill='{fill}'/>"
+           for x0, y0, x1, y1 in item["rects"]]
     out += [f"<ellipse cx='{_n(plot.x(cx))}' cy='{_n(plot.y(cy))}' rx='{_n(r * plot.sx)}' "
             f"ry='{_n(r * plot.sy)}' fill='{fill}'/>" for cx, cy, r in item["discs"]]
     out += [f"<path d='{_polygon(plot, flat)}' fill='{fill}'/>" for flat in item["polygons"]]

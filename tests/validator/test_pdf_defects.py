@@ -24,18 +24,12 @@ from planning_core.vehicles import Vehicle
 from tests.conftest import ROOT
 from tests.validator.test_family_checks import PROBLEM as CAR2, answer as car2_answer
 from tests.validator.test_family_geometric_checks import answer as path_answer
+from tests.validator.test_family_pdf import ARM
 from tests.validator.validator_testlib import run_validator
 from validator.checks import validate_output, validate_plan
 from validator.render_pdf import render_pdf
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
-ARM = """kinoplan 1
-system arm2
-world -2.2 -2.2 2.2 2.2
-circle 0 1.8 0.2
-start theta1 -1.5 theta2 0
-goal theta1 -0.5 theta2 0.5 within 0.05
-"""
 
 
 def family_pdf(problem_text: str, output: str, notes=()) -> bytes:

@@ -278,7 +278,9 @@
   function polygonPath(ctx, p, flat) {
     const t = p.t;
     ctx.moveTo(t.tx + t.sx * flat[0], t.ty - t.sy * flat[1]);
-    for (let i = 2; i < flat.length; i += 2) ctx.lineTo(t.tx + t.sx * flat[i], t.ty - t.sy * flat[i + 1]);
+    for (let i = 2; i < flat.length; i += 2) {
+      ctx.lineTo(t.tx + t.sx * flat[i], t.ty - t.sy * flat[i + 1]);
+    }
     ctx.closePath();
   }
 
@@ -306,13 +308,17 @@
     ctx.stroke(); ctx.setLineDash([]);
     ctx.beginPath();
     for (const [x0, y0, x1, y1] of item.fronts) {
-      ctx.moveTo(t.tx + t.sx * x0, t.ty - t.sy * y0); ctx.lineTo(t.tx + t.sx * x1, t.ty - t.sy * y1);
+      ctx.moveTo(t.tx + t.sx * x0, t.ty - t.sy * y0);
+      ctx.lineTo(t.tx + t.sx * x1, t.ty - t.sy * y1);
     }
     ctx.strokeStyle = item.front; ctx.lineWidth = 2.2; ctx.stroke();
   }
 
   function halo(ctx, draw, width) {
-    ctx.save(); ctx.strokeStyle = "#fff"; ctx.lineWidth = width; draw(); ctx.stroke(); ctx.restore();
+    ctx.save();
+    ctx.strokeStyle = "#fff"; ctx.lineWidth = width;
+    draw(); ctx.stroke();
+    ctx.restore();
   }
 
   function drawMark(ctx, p, item) {
@@ -328,7 +334,8 @@
         ctx.beginPath();
         if (item.outline !== false) ctx.ellipse(x, y, rx, ry, 0, 0, TAU);
         if (Math.min(rx, ry) < 4 && arm) {
-          ctx.moveTo(x - arm, y); ctx.lineTo(x + arm, y); ctx.moveTo(x, y - arm); ctx.lineTo(x, y + arm);
+          ctx.moveTo(x - arm, y); ctx.lineTo(x + arm, y);
+          ctx.moveTo(x, y - arm); ctx.lineTo(x, y + arm);
         }
       };
       halo(ctx, path, 5);
@@ -337,7 +344,8 @@
       const s = item.size;
       const path = () => {
         ctx.beginPath();
-        ctx.moveTo(x - s, y - s); ctx.lineTo(x + s, y + s); ctx.moveTo(x - s, y + s); ctx.lineTo(x + s, y - s);
+        ctx.moveTo(x - s, y - s); ctx.lineTo(x + s, y + s);
+        ctx.moveTo(x - s, y + s); ctx.lineTo(x + s, y - s);
         ctx.moveTo(x + 1.35 * s, y); ctx.arc(x, y, 1.35 * s, 0, TAU);
       };
       halo(ctx, path, 6);
@@ -432,7 +440,9 @@
     stats.view = index;
     const view = currentView(state);
     document.getElementById("what").textContent = view.what || "";
-    document.querySelectorAll("nav button").forEach((b, i) => b.classList.toggle("on", i === index));
+    document.querySelectorAll("nav button").forEach((b, i) => {
+      b.classList.toggle("on", i === index);
+    });
     draw(state);
   }
 
@@ -464,7 +474,11 @@
           (tree.kept < tree.total ? ` (of ${tree.total} printed)` : "") +
           (tree.stride > 1 ? `, one in ${tree.stride} drawn` : "");
       };
-      slider.addEventListener("input", () => { state.grown = Number(slider.value); say(); draw(state); });
+      slider.addEventListener("input", () => {
+        state.grown = Number(slider.value);
+        say();
+        draw(state);
+      });
       say();
       box.append(element("span", {}, "growth"), slider, label);
       footer.append(box);
@@ -552,7 +566,10 @@
 
   function interact(canvas, state, pointer) {
     let drag = null;
-    const local = e => { const r = canvas.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
+    const local = e => {
+      const r = canvas.getBoundingClientRect();
+      return [e.clientX - r.left, e.clientY - r.top];
+    };
     canvas.addEventListener("wheel", e => {
       e.preventDefault();
       const [px, py] = local(e), view = currentView(state), p = plotAt(view, px, py);
@@ -582,7 +599,10 @@
     const end = () => { drag = null; canvas.classList.remove("dragging"); };
     canvas.addEventListener("pointerup", end);
     canvas.addEventListener("pointercancel", end);
-    canvas.addEventListener("dblclick", () => { currentView(state).plots.forEach(fit); draw(state); });
+    canvas.addEventListener("dblclick", () => {
+      currentView(state).plots.forEach(fit);
+      draw(state);
+    });
     canvas.addEventListener("pointerleave", () => { pointer.textContent = ""; });
   }
 
