@@ -23,8 +23,8 @@ from planning_core.kinoplan import KinoplanProblem, state_validator
 from planning_core.worlds.shapes import ConvexPolygon, Disc, Rect
 from validator.render_geometry import (BLOCKED_GRAY, CORNER_RGB, FAILURE_RGB, FOOTPRINT_FILL_RGB,
                                        FOOTPRINT_RGB, GOAL_RGB, HEADING_RGB, OBSTACLE_GRAY,
-                                       POSE_RGB, SHIP_POINTS, SOLUTION_RGB, START_FILL_RGB,
-                                       START_RGB, TREE_RGB, Flown, FamilyOptions, body_note,
+                                       POSE_RGB, SHIP_POINTS, SOLUTION_RGB, START_RGB, TREE_RGB,
+                                       Flown, FamilyOptions, body_note,
                                        caption_lines, duration_note, family_heading, fly,
                                        footprint_states, footprint_step, front_mark, goal_shape,
                                        grid_heading, grid_solution, grid_tree_edge,
@@ -316,13 +316,16 @@ def goal_items(goal, i: int, j: int, box, rays: int, angle_x: bool = False,
 
 def body_items(system, states: Sequence, outline=FOOTPRINT_RGB, fill=FOOTPRINT_FILL_RGB,
                dash: Sequence[float] = ()) -> list[dict]:
-    """The body at each state: footprints filled and outlined, and the front edges."""
+    """The body at each state: footprints outlined (filled, half see-through, unless
+    ``fill`` is None: the start and goal bodies, drawn over the answer) and the front
+    edges."""
     if not states:
         return []
     return [{"kind": "bodies",
              "polygons": [[v for p in system.footprint(s).points for v in p] for s in states],
              "fronts": [[v for p in front_mark(system, s) for v in p] for s in states],
-             "fill": hex_colour(fill), "colour": hex_colour(outline),
+             "fill": hex_colour(fill) if fill is not None else None,
+             "colour": hex_colour(outline),
              "front": hex_colour(HEADING_RGB), "dash": list(dash)}]
 
 
@@ -366,8 +369,7 @@ def plane_view(problem, report, flown: Flown, options: SceneOptions) -> tuple[di
               "tree": [tree] if tree else [],
               "footprints": body_items(system, footprint_states(flown, every)) if body else [],
               "answer": [answer.item(SOLUTION_RGB, 2.5)] if flown.states else [],
-              "marks": [*(body_items(system, [problem.start], START_RGB, START_FILL_RGB)
-                          if body else []),
+              "marks": [*(body_items(system, [problem.start], START_RGB, None) if body else []),
                         *goal_items(problem.goal, i, j, box, options.family.goal_rays, angle_x),
                         start_dot(inside(box, problem.start[i], problem.start[j], angle_x))],
               "failure": _family_failure(report, box, angle_x, False)}
@@ -519,9 +521,9 @@ def rigid_view(problem, report, path, options: SceneOptions) -> tuple[dict, dict
     layers = {"obstacles": obstacle_items(world), "tree": [tree] if tree else [],
               "footprints": body_items(system, poses),
               "answer": [answer.item(SOLUTION_RGB, 2.5)] if path else [],
-              "marks": [*body_items(system, [problem.start], START_RGB, START_FILL_RGB),
-                        *(body_items(system, [goal.target], GOAL_RGB, (1.0, 1.0, 1.0),
-                                     (6.0, 4.0)) if goal.full else []),
+              "marks": [*body_items(system, [problem.start], START_RGB, None),
+                        *(body_items(system, [goal.target], GOAL_RGB, None, (6.0, 4.0))
+                          if goal.full else []),
                         *goal_items(goal, 0, 1, box, options.family.goal_rays),
                         start_dot(inside(box, *problem.start[:2]))],
               "failure": _family_failure(report, box, False, False)}

@@ -13,7 +13,7 @@ from html import escape
 from validator.render_file import write_atomically
 from validator.render_geometry import TAU, axis_ticks, cell_runs
 
-LAYERS = ("grid", "obstacles", "tree", "footprints", "marks", "answer", "failure")
+LAYERS = ("grid", "obstacles", "tree", "footprints", "answer", "marks", "failure")
 _FONT = "font-family='Helvetica, Arial, sans-serif'"
 
 
@@ -121,7 +121,8 @@ def _bodies(plot: _Plot, item: dict) -> list[str]:
     shapes = "".join(_polygon(plot, flat) for flat in item["polygons"])
     fronts = "".join(f"M{_n(plot.x(a))} {_n(plot.y(b))}L{_n(plot.x(c))} {_n(plot.y(d))}"
                      for a, b, c, d in item["fronts"])
-    return [f"<path d='{shapes}' fill='{item['fill']}' fill-opacity='0.6' "
+    fill = f"fill='{item['fill']}' fill-opacity='0.6'" if item["fill"] else "fill='none'"
+    return [f"<path d='{shapes}' {fill} "
             f"stroke='{item['colour']}' stroke-width='1.2'{dash}/>",
             f"<path d='{fronts}' stroke='{item['front']}' stroke-width='2.2' fill='none'/>"]
 

@@ -125,6 +125,8 @@ class Chromium:
             self.socket = WebSocket(self._page_url())
             for domain in ("Page", "Runtime", "Log"):
                 self.call(f"{domain}.enable")
+            self.call("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                      deviceScaleFactor=1, mobile=False)
         except BaseException:
             self.close()
             raise
@@ -175,13 +177,22 @@ class Chromium:
             self.events.append(message)
 
     def open(self, url: str, timeout: float = 60.0) -> None:
-        """Navigate and wait for the load event (the page is loaded again when only the
-        URL's fragment changed)."""
-        self.events.clear()
-        if "loaderId" not in self.call("Page.navigate", url=url):
-            self.call("Page.reload")
+        """Navigate and wait for the load event; a URL that differs from the page's
+        only in its fragment is loaded afresh (by way of about:blank)."""
+        if not self._navigate(url):
+            self._navigate("about:blank")
+            self._wait_loaded(timeout)
+            self._navigate(url)
+        self._wait_loaded(timeout)
+
+    def _wait_loaded(self, timeout: float) -> None:
         self.wait_for(lambda: any(e.get("method") == "Page.loadEventFired" for e in self.events),
                       timeout)
+
+    def _navigate(self, url: str) -> bool:
+        """Start loading ``url``; False when that was a move within the same document."""
+        self.events.clear()
+        return "loaderId" in self.call("Page.navigate", url=url)
 
     def wait_for(self, done, timeout: float = 60.0, poll: float = 0.05) -> None:
         deadline = time.monotonic() + timeout

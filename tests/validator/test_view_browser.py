@@ -169,3 +169,37 @@ def test_a_million_edge_tree_opens_in_under_3_s_in_under_60_mb(browser, tmp_path
     stats = load(browser, page)
     assert browser.console_errors() == [] and stats["edgesDrawn"] == 1_000_000
     assert stats["firstDrawMs"] < 3000
+
+
+def mouse(browser: Chromium, kind: str, x: float, y: float, **more) -> None:
+    browser.call("Input.dispatchMouseEvent", type=kind, x=x, y=y, **more)
+
+
+def test_zoom_pan_layers_and_the_pointer_coordinates(browser, tmp_path):
+    text, flags, answer = plan("grid", tmp_path)
+    load(browser, view(text, flags, answer, tmp_path))
+    left, top, right, bottom = browser.evaluate(
+        "(() => { const r = document.querySelector('canvas').getBoundingClientRect();"
+        " return [r.left, r.top, r.right, r.bottom]; })()")
+    x, y = (left + right) / 2, (top + bottom) / 2
+    mouse(browser, "mouseMoved", x, y)
+    said = browser.evaluate("document.getElementById('pointer').textContent")
+    assert said.startswith("x ") and ", y " in said and "(cell " in said
+    before = browser.evaluate("window.rrtView.plots[0]")
+    draws = browser.evaluate("window.rrtView.draws")
+    mouse(browser, "mouseWheel", x, y, deltaX=0, deltaY=-400)
+    browser.wait_for(lambda: browser.evaluate("window.rrtView.draws") > draws)
+    zoomed = browser.evaluate("window.rrtView.plots[0]")
+    assert zoomed[0] > 1.5 * before[0] and zoomed[1] > 1.5 * before[1]
+    mouse(browser, "mousePressed", x, y, button="left", clickCount=1)
+    mouse(browser, "mouseMoved", x + 80, y + 30, button="left", buttons=1)
+    mouse(browser, "mouseReleased", x + 80, y + 30, button="left", clickCount=1)
+    browser.wait_for(lambda: browser.evaluate("window.rrtView.plots[0][2]") != zoomed[2])
+    panned = browser.evaluate("window.rrtView.plots[0]")
+    assert (round(panned[2] - zoomed[2]), round(panned[3] - zoomed[3])) == (80, 30)
+    assert count(canvas_pixels(browser), TREE) > 0
+    draws = browser.evaluate("window.rrtView.draws")
+    browser.evaluate("document.getElementById('layer-tree').click()")
+    browser.wait_for(lambda: browser.evaluate("window.rrtView.draws") > draws)
+    assert count(canvas_pixels(browser), TREE, 10) == 0
+    assert browser.console_errors() == []

@@ -6,7 +6,7 @@
 "use strict";
 (function () {
   const TAU = 2 * Math.PI;
-  const LAYERS = ["grid", "obstacles", "tree", "footprints", "marks", "answer", "failure"];
+  const LAYERS = ["grid", "obstacles", "tree", "footprints", "answer", "marks", "failure"];
   const LAYER_NAMES = {grid: "grid", obstacles: "obstacles", tree: "tree", footprints: "footprints",
                        answer: "answer", marks: "start and goal", failure: "failure"};
   const CHUNK = 20000;          // polylines a path holds before it is stroked
@@ -303,7 +303,8 @@
     const t = p.t;
     ctx.beginPath();
     for (const flat of item.polygons) polygonPath(ctx, p, flat);
-    ctx.globalAlpha = 0.6; ctx.fillStyle = item.fill; ctx.fill(); ctx.globalAlpha = 1;
+    if (item.fill) { ctx.globalAlpha = 0.6; ctx.fillStyle = item.fill; ctx.fill(); }
+    ctx.globalAlpha = 1;
     ctx.strokeStyle = item.colour; ctx.lineWidth = 1.2; ctx.setLineDash(item.dash || []);
     ctx.stroke(); ctx.setLineDash([]);
     ctx.beginPath();
@@ -455,9 +456,12 @@
     });
   }
 
+  // The colour a layer's check box shows: its first item's (the start's dot for the marks).
   function swatchColour(scene, id) {
     for (const v of scene.views) for (const p of v.plots) for (const l of p.layers) {
-      if (l.id === id && l.items.length) return l.items[0].colour || l.items[0].fill || "#999";
+      if (l.id !== id || !l.items.length) continue;
+      const item = l.items.find(i => i.kind === "dot" && i.halo) || l.items[0];
+      return item.colour || item.fill || "#999";
     }
     return "#999";
   }
@@ -531,6 +535,7 @@
                       t: view.plots.map(p => Object.assign({}, p.t))};
     const ms = performance.now() - began;
     stats.draws += 1; stats.lastDrawMs = ms; stats.edgesDrawn = state.edgesDrawn;
+    stats.plots = view.plots.map(p => [p.t.sx, p.t.sy, p.t.tx, p.t.ty]);
     if (stats.firstDrawMs === null) stats.firstDrawMs = performance.now();
     stats.ready = true;
   }
