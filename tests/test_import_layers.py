@@ -127,17 +127,39 @@ def test_no_circles(package):
     assert circles(package) == []
 
 
+RENDER_FLOORS = {"render_file": 0, "render_geometry": 0, "render_page": 1, "render_scene": 1,
+                 "render_html": 1, "render_svg": 1, "render_plot": 2, "render_grid": 2,
+                 "render_kinodynamic": 3, "render_geometric": 3, "render_pdf": 4,
+                 "render_png": 5, "render_output": 6}
+"""The pictures' modules by floor: what every picture draws (render_geometry) and the
+atomic write (render_file) at the bottom; the PDF's page, the view's scene and its HTML
+and SVG writers over them; the PDF's frames, its grid page, its family pages, its entry
+(render_pdf), the PNG from it; render_output, which picks one by -o's extension, on top."""
+WITHOUT_REPORTLAB = ("render_file", "render_geometry", "render_scene", "render_html",
+                     "render_svg", "render_output")
+
+
 def test_the_render_modules_import_one_way():
-    """render_pdf (the entry) over the grid, kinodynamic and geometric pages, over
-    render_plot (the family's frames), over render_page (what every page shares)."""
-    render = {module: {target for target, _ in targets if ".render_" in target}
+    render = {module.rpartition(".")[2]: {target.rpartition(".")[2] for target, _ in targets
+                                          if ".render_" in target}
               for module, targets in edges().items() if module.startswith("validator.render_")}
-    assert render["validator.render_page"] == set()
-    assert render["validator.render_plot"] == {"validator.render_page"}
-    assert render["validator.render_grid"] == {"validator.render_page"}
-    for pages in ("validator.render_kinodynamic", "validator.render_geometric"):
-        assert render[pages] == {"validator.render_page", "validator.render_plot"}
-    assert not any("validator.render_pdf" in targets for targets in render.values())
+    assert set(render) == set(RENDER_FLOORS)
+    upward = [f"{module} -> {target}" for module, targets in render.items() for target in targets
+              if RENDER_FLOORS[target] >= RENDER_FLOORS[module]]
+    assert upward == []
+
+
+def test_the_view_the_svg_and_the_geometry_import_no_reportlab():
+    """-o FILE.html and .svg need nothing beyond the standard library."""
+    for name in WITHOUT_REPORTLAB:
+        tree = ast.parse((ROOT / "validator" / f"{name}.py").read_text())
+        imported = [n for node in ast.walk(tree) for n in _imported(f"validator.{name}", node)]
+        assert not [n for n in imported if n.split(".")[0] in ("reportlab", "pypdfium2")], name
+        below = {target for target, _ in edges()[f"validator.{name}"] if ".render_" in target}
+        allowed = {f"validator.{m}" for m in WITHOUT_REPORTLAB}
+        if name == "render_output":  # imports the PDF's and PNG's writers only to draw them
+            allowed |= {"validator.render_pdf", "validator.render_png"}
+        assert below <= allowed, name
 
 
 def test_planning_core_has_no_command_line_code():

@@ -26,21 +26,22 @@ from reportlab.lib.pagesizes import landscape, letter, portrait
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.problem import Problem
-from planning_core.systems import spaceship
 from planning_core.vehicles import Vehicle
 from validator.checks import ValidationReport
+from validator.render_geometry import (SHIP_POINTS, caption_lines, cell_runs, grid_heading,
+                                       grid_solution, grid_tree_edge, rows_in_budget, tick_label,
+                                       tick_steps)
 from validator.render_page import (AXIS_LEFT, BLOCKED_GRAY, BOTTOM_SPACE, CORNER_RGB, GOAL_RGB,
-                                   GRID_GRAY, MARGIN, SOLUTION_RGB, START_RGB, TOP_SPACE,
-                                   TREE_RGB, PageLayout, RenderOptions, RenderSummary,
-                                   caption_lines, draw_captions, draw_legend, draw_line,
-                                   draw_title, failure_cross, layout_polyline_ops, stroke,
-                                   tick_label, tick_steps)
+                                   GRID_GRAY, MARGIN, SOLUTION_RGB, TOP_SPACE, TREE_RGB,
+                                   PageLayout, RenderOptions, RenderSummary, draw_captions,
+                                   draw_legend, draw_line, draw_no_answer, draw_title,
+                                   failure_cross, layout_polyline_ops, start_mark, stroke)
 
 _SIDE_SPACE = 2 * MARGIN + AXIS_LEFT
 _MIN_PAGE_WIDTH = 432.0  # 6 in: room for the text lines beside a narrow map
 _EDGES_PER_PATH = 10_000
 _POINTS_PER_PATH = 50_000
-_SHIP_POINTS = 1 + spaceship.SLICES  # a spaceship line drawn: its state and every slice
+_GOAL_MARK = 7.0  # points: the goal's crosshair arm, when its circle is smaller
 
 
 def page_layout(problem: Problem, page_size: tuple[float, float] = letter) -> PageLayout:
@@ -70,8 +71,9 @@ def render_grid(out: BinaryIO, problem: Problem, vehicle: Vehicle,
     plan = report.plan if report is not None else None
     summary = RenderSummary(0, 0)
     if plan is not None:
-        summary = _draw_plan(canvas, report, vehicle, layout, options)
-    _draw_start_and_goal(canvas, problem, layout)
+        summary = _draw_plan(canvas, problem, report, vehicle, layout, options)
+    else:
+        _draw_start_and_goal(canvas, problem, layout)
     if report is not None:
         _draw_corner_cuts(canvas, report, layout)
     failure = report.first_failure if report is not None else None
@@ -79,7 +81,7 @@ def render_grid(out: BinaryIO, problem: Problem, vehicle: Vehicle,
     if marked:
         _draw_failure_mark(canvas, layout, *failure.where)
 
-    draw_title(canvas, layout, verdict, _heading(problem, vehicle, report, problem_label),
+    draw_title(canvas, layout, verdict, grid_heading(problem, vehicle, report, problem_label),
                valid=report is not None and report.valid)
     if plan is not None:
         draw_line(canvas, layout, layout.page_height - MARGIN - 41, _counts(report, summary),
@@ -87,27 +89,33 @@ def render_grid(out: BinaryIO, problem: Problem, vehicle: Vehicle,
     draw_captions(canvas, layout, caption_lines(report, notes), failure is not None)
     draw_legend(canvas, layout, _legend_items(problem, report, summary, marked))
     _draw_axes(canvas, problem, layout)
+    if report is None:
+        draw_no_answer(canvas, layout.origin_x + layout.scale * problem.width / 2,
+                       layout.origin_y + layout.scale * problem.height / 2,
+                       min(layout.scale * problem.width, 420.0), notes)
     canvas.showPage()
     canvas.save()
     return summary
 
 
-def _draw_plan(canvas: Canvas, report: ValidationReport, vehicle: Vehicle,
+def _draw_plan(canvas: Canvas, problem: Problem, report: ValidationReport, vehicle: Vehicle,
                layout: PageLayout, options: RenderOptions) -> RenderSummary:
-    """The tree, then the solution over it, each within its budget."""
+    """The tree, the start and goal over it, then the solution over them, each within
+    its budget."""
     plan = report.plan
-    per_edge = _SHIP_POINTS if vehicle.is_spaceship else 2
+    per_edge = SHIP_POINTS if vehicle.is_spaceship else 2
     edges = min(options.max_tree_edges_drawn,
-                _rows_in_budget(plan.tree_count, options.max_tree_points, per_edge))
-    lines = _rows_in_budget(plan.trajectory_count, options.max_solution_points,
-                            _SHIP_POINTS if vehicle.is_spaceship else 1)
+                rows_in_budget(plan.tree_count, options.max_tree_points, per_edge))
+    lines = rows_in_budget(plan.trajectory_count, options.max_solution_points,
+                           SHIP_POINTS if vehicle.is_spaceship else 1)
     canvas.saveState()
     # Anything far outside the map (bad output) is cut at the page's edge.
     path = canvas.beginPath()
     path.rect(0, 0, layout.page_width, layout.page_height)
     canvas.clipPath(path, stroke=0, fill=0)
     drawn = _draw_tree(canvas, plan.tree_rows(), vehicle, layout, options, edges)
-    _stroke_long_polyline(canvas, _solution_iter(report, lines), layout, 0.05, SOLUTION_RGB,
+    _draw_start_and_goal(canvas, problem, layout)  # over the tree, under the solution
+    _stroke_long_polyline(canvas, grid_solution(report, lines), layout, 0.05, SOLUTION_RGB,
                           options.solution_line_width)
     canvas.restoreState()
     return RenderSummary(drawn, plan.tree_count, lines, plan.trajectory_count)
@@ -134,16 +142,8 @@ def _stroke_long_polyline(canvas: Canvas, points: Iterator[tuple[float, float]],
 def _draw_grid(canvas: Canvas, problem: Problem, layout: PageLayout) -> None:
     w, h, s = problem.width, problem.height, layout.scale
     ox, oy = layout.origin_x, layout.origin_y
-    runs = []
-    for row in range(h):
-        cells = problem.blocked[row * w:(row + 1) * w]
-        column = cells.find(1)
-        while column >= 0:
-            end = cells.find(0, column)
-            end = w if end < 0 else end
-            runs.append(f"{ox + s * column:.2f} {oy + s * row:.2f} "
-                        f"{s * (end - column):.2f} {s:.2f} re")
-            column = cells.find(1, end)
+    runs = [f"{ox + s * column:.2f} {oy + s * row:.2f} {s * (end - column):.2f} {s:.2f} re"
+            for row, column, end in cell_runs(problem.blocked, w, h)]
     if s >= 3.0:  # grid lines (under the blocked cells) where cells are big enough
         lines = [f"{ox + s * i:.2f} {oy:.2f} m {ox + s * i:.2f} {oy + s * h:.2f} l"
                  for i in range(1, w)]
@@ -164,57 +164,21 @@ def _draw_grid(canvas: Canvas, problem: Problem, layout: PageLayout) -> None:
     canvas.restoreState()
 
 
-def _rows_in_budget(count: int, budget: int, points_per_row: int) -> int:
-    return max(0, min(count, budget // points_per_row))
-
-
 def _draw_tree(canvas: Canvas, rows: Iterable[Sequence[float]], vehicle: Vehicle,
                layout: PageLayout, options: RenderOptions, limit: int) -> int:
     ops: list[str] = []
     drawn = 0
-    slice_states = spaceship.SYSTEM.slice_states
     spacing = options.min_vertex_spacing
     for row in rows:
         if drawn >= limit:
             break
         drawn += 1
-        if vehicle.is_spaceship:
-            if not all(map(math.isfinite, row)):
-                continue
-            points = [(row[0], row[1])]
-            points.extend((s[0], s[1]) for s in slice_states(row[:4], row[4:]))
-        else:
-            points = [(row[0], row[1]), (row[2], row[3])]
-        layout_polyline_ops(points, layout, spacing, ops)
+        layout_polyline_ops(grid_tree_edge(row, vehicle.is_spaceship), layout, spacing, ops)
         if drawn % _EDGES_PER_PATH == 0:
             stroke(canvas, ops, TREE_RGB, options.tree_line_width)
             ops = []
     stroke(canvas, ops, TREE_RGB, options.tree_line_width)
     return drawn
-
-
-def _solution_iter(report: ValidationReport, lines: int) -> Iterator[tuple[float, float]]:
-    """The first ``lines`` lines of the solution as flown: the printed points (point
-    vehicle), or each line's state and every slice of its control (spaceship)."""
-    plan = report.plan
-    if plan is None:
-        return
-    rows = islice(plan.trajectory_rows(), lines)
-    if not report.vehicle.is_spaceship:
-        yield from ((r[0], r[1]) for r in rows)
-        return
-    slice_states = spaceship.SYSTEM.slice_states
-    for row in rows:
-        yield row[0], row[1]
-        if all(map(math.isfinite, row)):
-            yield from ((s[0], s[1]) for s in slice_states(row[:4], row[4:]))
-
-
-def solution_points(report: ValidationReport, max_lines: int | None = None
-                    ) -> list[tuple[float, float]]:
-    """The solution as flown (see _solution_iter), its first ``max_lines`` lines or all."""
-    count = report.plan.trajectory_count if report.plan is not None else 0
-    return list(_solution_iter(report, count if max_lines is None else max_lines))
 
 
 def _marker_position(layout: PageLayout, x: float, y: float) -> tuple[float, float]:
@@ -225,17 +189,22 @@ def _marker_position(layout: PageLayout, x: float, y: float) -> tuple[float, flo
 
 
 def _draw_start_and_goal(canvas: Canvas, problem: Problem, layout: PageLayout) -> None:
-    s = layout.scale
-    sx, sy = layout.to_page(*problem.start)
-    canvas.setFillColorRGB(*START_RGB)
-    canvas.circle(sx, sy, 3.0, stroke=0, fill=1)
+    """The goal circle (radius 0.1; a crosshair over it when that is small) and the
+    start's dot, each over a white halo so that a dense tree does not hide them."""
     gx, gy = layout.to_page(*problem.goal)
-    canvas.setStrokeColorRGB(*GOAL_RGB)
-    canvas.setLineWidth(1.0)
-    canvas.circle(gx, gy, 0.1 * s, stroke=1, fill=0)
-    if 0.1 * s < 4.0:  # the true circle is too small to see: add a crosshair
-        canvas.line(gx - 5, gy, gx + 5, gy)
-        canvas.line(gx, gy - 5, gx, gy + 5)
+    radius = 0.1 * layout.scale
+    arm = _GOAL_MARK if radius < 4.0 else 0.0
+    canvas.saveState()
+    canvas.setLineCap(1)
+    for rgb, width in (((1.0, 1.0, 1.0), 5.0), (GOAL_RGB, 1.4)):
+        canvas.setStrokeColorRGB(*rgb)
+        canvas.setLineWidth(width)
+        canvas.circle(gx, gy, radius, stroke=1, fill=0)
+        if arm:
+            canvas.line(gx - arm, gy, gx + arm, gy)
+            canvas.line(gx, gy - arm, gx, gy + arm)
+    canvas.restoreState()
+    start_mark(canvas, *layout.to_page(*problem.start))
 
 
 def _draw_corner_cuts(canvas: Canvas, report: ValidationReport, layout: PageLayout) -> None:
@@ -297,15 +266,6 @@ def _legend_items(problem: Problem, report: ValidationReport | None, summary: Re
     if any(problem.blocked):
         items.append(("blocked", "grey: blocked cell"))
     return items
-
-
-def _heading(problem: Problem, vehicle: Vehicle, report: ValidationReport | None,
-             problem_label: str) -> str:
-    """The line under the verdict: the problem, the vehicle, and -strict if so."""
-    return (f"{problem_label or 'problem'}: {problem.width} x {problem.height} map, start "
-            f"({problem.start[0]:g}, {problem.start[1]:g}), goal ({problem.goal[0]:g}, "
-            f"{problem.goal[1]:g})   vehicle: {vehicle.value}"
-            + ("   -strict" if report is not None and report.strict else ""))
 
 
 def _counts(report: ValidationReport, summary: RenderSummary) -> str:

@@ -1,8 +1,9 @@
 """The family's PDF pages for the kinodynamic systems (SPEC 5.5).
 
-car2, unicycle, car1: the workspace (obstacles, the tree projected on (x, y), the
-solution re-simulated slice by slice, the body's footprint every few slices,
-start and goal region, the first failure), then state and control against time.
+car2, unicycle, car1: the workspace on a page of its shape (obstacles, the tree
+projected on (x, y), the solution re-simulated slice by slice, the body's footprint
+and heading every few slices, start and goal region, the first failure), then state
+and control against time.
 The pendulum: its phase portrait (theta across, wrapping; omega up) with tree,
 solution and goal region, then state and control against time.
 
@@ -15,17 +16,19 @@ the budget.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Sequence
 
 from reportlab.pdfgen.canvas import Canvas
 
-from validator.render_page import (FOOTPRINT_RGB, SOLUTION_RGB, START_RGB, TREE_RGB,
+from validator.render_geometry import (Flown, body_note, duration_note, fly, footprint_states,
+                                       footprint_step, lines_note, panel_range, phase_box,
+                                       thinning, tree_cost, tree_note, tree_polylines)
+from validator.render_page import (SOLUTION_RGB, START_FILL_RGB, START_RGB, TREE_RGB,
                                    FamilyOptions, RenderOptions, RenderSummary,
-                                   family_legend_items, thinning, tree_note)
-from validator.render_plot import (Frame, PageText, clip_to, draw_axes, draw_dot, draw_failure,
-                                   draw_goal, draw_obstacles, draw_page_text, draw_polygons,
-                                   frame_in, plot_area, polyline_ops, stroke_ops)
+                                   family_legend_items, stroke_ops)
+from validator.render_plot import (PAGE, Frame, PageText, clip_to, draw_axes, draw_bodies,
+                                   draw_failure, draw_goal, draw_headings, draw_obstacles,
+                                   draw_page_text, draw_start, frame_in, new_page, no_answer,
+                                   plot_area, polyline_ops)
 
 
 def kinodynamic_pages(canvas: Canvas, problem, report, text: PageText, options: RenderOptions,
@@ -35,72 +38,16 @@ def kinodynamic_pages(canvas: Canvas, problem, report, text: PageText, options: 
     plan = report.plan if report is not None else None
     flown = fly(problem.system, plan, options.max_solution_points)
     summary = _plane_page(canvas, problem, report, flown, text, options, family)
-    _time_page(canvas, problem, flown, text)
+    _time_page(canvas, problem, report, flown, text)
     return summary
 
 
-# ----- the solution and the tree, flown slice by slice -------------------------------------
-
-@dataclass
-class Flown:
-    """The solution as flown: each drawn line's state and slices, with times."""
-
-    states: list = field(default_factory=list)
-    times: list = field(default_factory=list)
-    controls: list = field(default_factory=list)
-    """(start time, end time, held values) per drawn line."""
-    lines: int = 0
-    total: int = 0
-
-
-def _drawable(system, row) -> bool:
-    n = len(system.state_names)
-    return all(map(math.isfinite, row)) and system.control_violation(row[n:]) is None
-
-
-def fly(system, plan, budget: int) -> Flown:
-    """Each line re-simulated from its own printed state (as check 7 does), until a
-    line that cannot be (bad control) or the vertex budget."""
-    flown = Flown(total=plan.trajectory_count if plan is not None else 0)
-    if plan is None:
-        return flown
-    n, dt, t = len(system.state_names), system.dt, 0.0
-    for row in plan.trajectory_rows():
-        state, control = row[:n], row[n:]
-        if not _drawable(system, row):
-            flown.states.append(state)
-            flown.times.append(t)
-            break
-        k = int(control[-1])
-        if len(flown.states) + k + 1 > budget:
-            break
-        flown.states.append(state)
-        flown.times.append(t)
-        slices = system.slice_states(state, control)
-        flown.states.extend(slices)
-        flown.times.extend(t + dt * (i + 1) for i in range(len(slices)))
-        flown.controls.append((t, t + dt * k, control[:-1]))
-        t += dt * k
-        flown.lines += 1
-    return flown
-
-
-def tree_polylines(system, plan, options: RenderOptions):
-    """``(stride, polylines)``: every ``stride``-th tree edge as its parent state and
-    slices (edges with a bad control are skipped)."""
+def tree_stride(system, plan, options: RenderOptions) -> int:
+    """Every how many tree edges one is drawn, within the budgets."""
     if plan is None or plan.tree_count == 0:
-        return 1, iter(())
-    kmax = system.kmax
-    cost = sum(min(max(int(k), 1), kmax) + 1 if math.isfinite(k) else 1
-               for k in plan.tree[plan.tree_fields - 1::plan.tree_fields])
-    stride = thinning(plan.tree_rows_kept, cost, options)
-    n = len(system.state_names)
-
-    def polylines():
-        for index, row in enumerate(plan.tree_rows()):
-            if index % stride == 0 and _drawable(system, row):
-                yield [row[:n], *system.slice_states(row[:n], row[n:])]
-    return stride, polylines()
+        return 1
+    return thinning(plan.tree_rows_kept, tree_cost(system, plan), options.max_tree_points,
+                    options.max_tree_edges_drawn)
 
 
 def draw_states(canvas: Canvas, frame: Frame, polylines, i: int, j: int, rgb,
@@ -108,25 +55,23 @@ def draw_states(canvas: Canvas, frame: Frame, polylines, i: int, j: int, rgb,
     """Polylines of states projected on variables ``i`` and ``j``."""
     ops: list[str] = []
     for states in polylines:
-        polyline_ops(frame, [(s[i], s[j]) for s in states], ops)
+        if states:
+            polyline_ops(frame, [(s[i], s[j]) for s in states], ops)
     stroke_ops(canvas, ops, rgb, width)
 
 
 # ----- pages ------------------------------------------------------------------------------
 
-def _plane_frame(problem) -> Frame:
-    """The workspace box, or for a system without a world (the pendulum) its phase
-    plane: the first variable (an angle) across, the second's bounds up."""
+def _plane_frame(canvas: Canvas, problem) -> tuple[tuple[float, float], Frame]:
+    """The page and frame of the workspace box (a page of its shape), or of the phase
+    plane (landscape)."""
     if problem.world is not None and problem.world.box is not None:
         box = problem.world.box
-        return frame_in((box.x0, box.y0, box.x1, box.y1), plot_area())
-    i, j = problem.system.position_indices
-    variables = problem.space.variables
-    low, high = variables[j].low, variables[j].high
-    if not (math.isfinite(low) and math.isfinite(high)):
-        low, high = -10.0, 10.0
-    return frame_in((-math.pi, low, math.pi, high), plot_area(), equal=False,
-                    angle_x=variables[i].angle, angle_y=False)
+        return new_page(canvas, (box.x0, box.y0, box.x1, box.y1))
+    i = problem.system.position_indices[0]
+    canvas.setPageSize(PAGE)
+    return PAGE, frame_in(phase_box(problem), plot_area(), equal=False,
+                          angle_x=problem.space.variables[i].angle)
 
 
 def _plane_page(canvas, problem, report, flown: Flown, text: PageText,
@@ -135,25 +80,28 @@ def _plane_page(canvas, problem, report, flown: Flown, text: PageText,
     goal region, first failure."""
     system, plan = problem.system, report.plan if report is not None else None
     i, j = system.position_indices
-    frame = _plane_frame(problem)
+    page, frame = _plane_frame(canvas, problem)
     footprints = system.occupies == "body"
     clip_to(canvas, frame)
     if problem.world is not None:
         draw_obstacles(canvas, frame, problem.world)
-    stride, polylines = tree_polylines(system, plan, options)
-    draw_states(canvas, frame, polylines, i, j, TREE_RGB, options.tree_line_width)
-    every = max(1, len(flown.states) // family.footprints)
-    if footprints and flown.states:
-        draw_polygons(canvas, frame, [system.footprint(s) for s in
-                                      (*flown.states[::every], flown.states[-1])],
-                      FOOTPRINT_RGB, 0.6)
+    stride = tree_stride(system, plan, options)
+    if plan is not None:
+        draw_states(canvas, frame, tree_polylines(system, plan, stride), i, j, TREE_RGB,
+                    options.tree_line_width)
+    every = footprint_step(flown, family)
+    bodies = footprint_states(flown, every) if footprints else []
+    if footprints:
+        draw_bodies(canvas, frame, system, bodies)
+        draw_bodies(canvas, frame, system, [problem.start], START_RGB, START_FILL_RGB, 1.2)
+    goal_drawn = draw_goal(canvas, frame, problem.goal, i, j, family.goal_rays)
+    draw_start(canvas, frame, (problem.start[i], problem.start[j]))
     draw_states(canvas, frame, [flown.states], i, j, SOLUTION_RGB, options.solution_line_width)
     if footprints:
-        draw_polygons(canvas, frame, [system.footprint(problem.start)], START_RGB, 1.2)
-    goal_drawn = draw_goal(canvas, frame, problem.goal, i, j, family.goal_rays)
-    draw_dot(canvas, frame, (problem.start[i], problem.start[j]), START_RGB)
+        draw_headings(canvas, frame, system, [problem.start, *bodies])
     failure = report.first_failure if report is not None else None
     draw_failure(canvas, frame, failure.where if failure else None)
+    no_answer(canvas, frame, report, text)
     canvas.restoreState()
     names = system.state_names
     draw_axes(canvas, frame, names[i], names[j])
@@ -161,45 +109,24 @@ def _plane_page(canvas, problem, report, flown: Flown, text: PageText,
     kept = plan.tree_rows_kept if plan is not None else 0
     what = (f"{'Workspace' if problem.world is not None else 'Phase portrait'} "
             f"({names[i]}, {names[j]}): {tree_note(total, kept, stride)}; solution "
-            f"re-simulated slice by slice ({_lines_note(flown)})"
-            + (f", footprint every {every} slices" if footprints else "")
-            + _length_note(report))
+            f"re-simulated slice by slice ({lines_note(flown)}"
+            + (f", {body_note(every)}" if footprints else "") + ")"
+            + duration_note(system, plan))
     legend = family_legend_items(flown.lines > 0, total > 0, goal_drawn,
                                  failure is not None and failure.where is not None,
                                  footprints and flown.lines > 0, problem.world)
-    draw_page_text(canvas, text, what, legend)
+    draw_page_text(canvas, text, what, legend, page)
     canvas.showPage()
     return RenderSummary(len(range(0, kept, stride)), total, flown.lines, flown.total)
 
 
-def _lines_note(flown: Flown) -> str:
-    if flown.lines < flown.total:
-        return f"{flown.lines} of {flown.total} lines drawn"
-    return f"{flown.total} lines"
-
-
-def _length_note(report) -> str:
-    if report is None or report.path_length is None:
-        return ""
-    return f"; path length {report.path_length:.4g}"
-
-
-def _panel_range(values: Sequence[float], bounds: tuple[float, float]) -> tuple[float, float]:
-    low, high = bounds
-    if math.isfinite(low) and math.isfinite(high) and low < high:
-        return low, high
-    finite = [v for v in values if math.isfinite(v)] or [0.0]
-    low, high = min(finite), max(finite)
-    pad = 0.05 * (high - low) or 1.0
-    return low - pad, high + pad
-
-
-def _time_page(canvas, problem, flown: Flown, text: PageText) -> None:
+def _time_page(canvas, problem, report, flown: Flown, text: PageText) -> None:
     """Each state variable and each held control against time along the solution,
     one panel each, stacked; angles in [-pi, pi], split where they wrap."""
     system = problem.system
     n, held = len(system.state_names), system.control_names[:-1]
     end = max(flown.times[-1] if flown.times else 0.0, system.dt)
+    canvas.setPageSize(PAGE)
     left, bottom, width, height = plot_area()
     panels = n + len(held)
     gap = 16.0
@@ -211,7 +138,7 @@ def _time_page(canvas, problem, flown: Flown, text: PageText) -> None:
             variable = system.space.variables[p]
             values = [s[p] for s in flown.states]
             low, high = ((-math.pi, math.pi) if variable.angle
-                         else _panel_range(values, (variable.low, variable.high)))
+                         else panel_range(values, (variable.low, variable.high)))
             frame = frame_in((0.0, low, end, high), area, equal=False, angle_y=variable.angle)
             points = list(zip(flown.times, values))
             name, rgb = variable.name, SOLUTION_RGB
@@ -227,7 +154,10 @@ def _time_page(canvas, problem, flown: Flown, text: PageText) -> None:
         draw_states(canvas, frame, [points] if points else [], 0, 1, rgb, 1.2)
         canvas.restoreState()
         draw_axes(canvas, frame, "t (s)", name, x_labels=p == panels - 1, y_gap=14.0)
-    what = (f"State and control against time along the solution ({_lines_note(flown)}, "
+    if report is None:
+        no_answer(canvas, frame_in((0, 0, 1, 1), (left, bottom, width, height), equal=False),
+                  report, text)
+    what = (f"State and control against time along the solution ({lines_note(flown)}, "
             f"{end:.4g} s; slices of {system.dt:g} s)")
     draw_page_text(canvas, text, what, [("solution", "red: state"),
                                         ("tree", "blue-grey: held control")])

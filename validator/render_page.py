@@ -2,7 +2,7 @@
 the colours, the page's bands (margins, title, counts, captions, legend), the
 render budgets and summary, the polyline writer in page points, tick steps, the
 text above and below the drawing and the legend's swatches; and the family pages'
-legend, tree thinning and tree note. Imports reportlab and nothing above it.
+legend. Imports reportlab, and of the validator only render_geometry (the colours).
 """
 
 from __future__ import annotations
@@ -14,32 +14,25 @@ from typing import Iterable, Sequence
 from reportlab.lib.pagesizes import letter
 from reportlab.pdfgen.canvas import Canvas
 
-from validator.checks import ValidationReport
+from validator.render_geometry import (BLOCKED_GRAY, CORNER_RGB, FAILURE_RGB,  # noqa: F401
+                                       FOOTPRINT_FILL_RGB, FOOTPRINT_RGB, GOAL_RGB, GRID_GRAY,
+                                       HEADING_RGB, OBSTACLE_GRAY, POSE_RGB, SOLUTION_RGB,
+                                       START_FILL_RGB, START_RGB, TREE_RGB, VALID_RGB,
+                                       FamilyOptions)
 
-SOLUTION_RGB = (0.85, 0.05, 0.05)
-TREE_RGB = (0.50, 0.62, 0.82)
-BLOCKED_GRAY = 0.30
-GRID_GRAY = 0.82
-START_RGB = (0.0, 0.60, 0.0)
-GOAL_RGB = (0.10, 0.20, 0.95)
-CORNER_RGB = (1.0, 0.55, 0.0)
-FAILURE_RGB = (0.85, 0.0, 0.85)
-VALID_RGB = (0.0, 0.50, 0.0)
-FOOTPRINT_RGB = (0.95, 0.55, 0.60)  # the family's bodies along a solution
-OBSTACLE_GRAY = 0.55               # the family's obstacles
+START_RADIUS = 4.5  # points: the start's dot
 
 MARGIN = 24.0
 _TITLE_BAND = 56.0      # verdict, heading, counts
 AXIS_LEFT = 26.0        # tick marks and their labels left of the map
 _AXIS_BOTTOM = 16.0     # ... and below it
-_CAPTION_LINES = 3
+_CAPTION_LINES = 4
 _CAPTION_STEP = 11.0
 _LEGEND_ROWS = 2
 _LEGEND_STEP = 12.0
 BOTTOM_SPACE = (MARGIN + _LEGEND_ROWS * _LEGEND_STEP + 4 + _CAPTION_LINES * _CAPTION_STEP
                 + 4 + _AXIS_BOTTOM)
 TOP_SPACE = MARGIN + _TITLE_BAND
-_MIN_TICK_GAP = 30.0    # points between labelled ticks, at least
 _FAR = 30_000.0  # page coordinates are clamped here: PDF readers dislike huge numbers
 
 
@@ -61,20 +54,6 @@ class RenderOptions:
     """Points: wide enough to show over the tree and blocked cells."""
     page_size: tuple[float, float] = letter
     """The largest page: the page is this (either way round) cut to the map's shape."""
-
-
-@dataclass(frozen=True)
-class FamilyOptions:
-    """What the family's pages draw, beyond RenderOptions's budgets."""
-
-    footprints: int = 40
-    """About this many body footprints along a kinodynamic solution."""
-    poses: int = 12
-    """The arm or rigid body drawn at about this many poses along a geometric path."""
-    cspace_cells: int = 200
-    """The arm's configuration-space square is shaded from this many x this many tests."""
-    goal_rays: int = 72
-    """Vertices of a goal region's outline (found along rays from the goal)."""
 
 
 @dataclass(frozen=True)
@@ -137,7 +116,8 @@ def layout_polyline_ops(points: Iterable[tuple[float, float]], layout: PageLayou
 
 
 def stroke(canvas: Canvas, ops: list[str], rgb: tuple[float, float, float],
-           width: float) -> None:
+           width: float, dash: Sequence[float] = ()) -> None:
+    """One path of ``ops`` (its first one a move) stroked in ``rgb``."""
     if not ops:
         return
     canvas.saveState()
@@ -145,25 +125,23 @@ def stroke(canvas: Canvas, ops: list[str], rgb: tuple[float, float, float],
     canvas.setLineWidth(width)
     canvas.setLineJoin(1)
     canvas.setLineCap(1)
+    if dash:
+        canvas.setDash(list(dash))
     canvas.addLiteral("\n".join(ops) + "\nS")
     canvas.restoreState()
 
 
-def tick_steps(scale: float) -> tuple[float, float | None]:
-    """The labelled step in map units (1, 2 or 5 times a power of ten, at least
-    _MIN_TICK_GAP points apart) and the unlabelled one between (None if under 4 pt)."""
-    raw = _MIN_TICK_GAP / scale
-    power = 10.0 ** math.floor(math.log10(raw))
-    mantissa = next(m for m in (1, 2, 5, 10) if m * power >= raw * (1 - 1e-9))
-    step = mantissa * power
-    for divisor in ((10, 5, 2) if mantissa in (1, 5, 10) else (4, 2)):
-        if step / divisor * scale >= 4.0:
-            return step, step / divisor
-    return step, None
-
-
-def tick_label(value: float) -> str:
-    return f"{round(value, 9):g}"
+def stroke_ops(canvas: Canvas, ops: list[str], rgb, width: float, every: int = 10_000,
+               dash: Sequence[float] = ()) -> None:
+    """Stroke ``ops`` as paths of at most ``every`` operators each. A path cut inside a
+    polyline starts with a move to where the previous one ended: a path that began with
+    a line-to would have no current point (strict readers drop it)."""
+    for start in range(0, len(ops), every):
+        chunk = ops[start:start + every]
+        if start and not chunk[0].endswith(" m"):
+            x, y = ops[start - 1].split()[-3:-1]
+            chunk.insert(0, f"{x} {y} m")
+        stroke(canvas, chunk, rgb, width, dash)
 
 
 def failure_cross(canvas: Canvas, x: float, y: float, arm: float) -> None:
@@ -203,22 +181,6 @@ def draw_title(canvas: Canvas, layout: PageLayout, verdict: str, heading: str,
     draw_line(canvas, layout, top - 28, heading, "Helvetica", 9.5)
 
 
-def caption_lines(report: ValidationReport | None, notes: Sequence[str]) -> list[str]:
-    """The notes, then the first failure (or else the first warning)."""
-    captions = list(notes)
-    failure = report.first_failure if report is not None else None
-    if failure is not None:
-        at = f", line {failure.line}" if failure.line is not None else ""
-        captions.append(f"First failure (check {failure.number}{at}): {failure.message}")
-        if failure.detail:
-            captions.append(failure.detail)
-    elif report is not None and report.warnings:
-        captions.append(f"Warning: {report.warnings[0]}"
-                        + (f" (+{len(report.warnings) - 1} more)" if len(report.warnings) > 1
-                           else ""))
-    return captions
-
-
 def draw_captions(canvas: Canvas, layout: PageLayout, captions: Sequence[str],
                   failed: bool) -> None:
     """Up to _CAPTION_LINES lines (magenta after a failure) under the map's labels."""
@@ -235,14 +197,19 @@ def _draw_swatch(canvas: Canvas, kind: str, x: float, y: float) -> None:
     cx, cy = x + 7.0, y + 4.0
     if kind in ("solution", "tree", "pose"):
         rgb, width = {"solution": (SOLUTION_RGB, 1.8), "tree": (TREE_RGB, 1.0),
-                      "pose": (FOOTPRINT_RGB, 1.6)}[kind]
+                      "pose": (POSE_RGB, 1.6)}[kind]
         canvas.setStrokeColorRGB(*rgb)
         canvas.setLineWidth(width)
         canvas.setLineCap(1)
         canvas.line(x + 1, cy, x + 13, cy)
+    elif kind == "goalpose":
+        canvas.setStrokeColorRGB(*GOAL_RGB)
+        canvas.setLineWidth(1.4)
+        canvas.setDash([4.0, 3.0])
+        canvas.line(x, cy, x + 14, cy)
     elif kind == "start":
         canvas.setFillColorRGB(*START_RGB)
-        canvas.circle(cx, cy, 3.0, stroke=0, fill=1)
+        canvas.circle(cx, cy, 3.5, stroke=0, fill=1)
     elif kind in ("goal", "corner"):
         canvas.setStrokeColorRGB(*(GOAL_RGB if kind == "goal" else CORNER_RGB))
         canvas.setLineWidth(1.0 if kind == "goal" else 1.2)
@@ -253,9 +220,13 @@ def _draw_swatch(canvas: Canvas, kind: str, x: float, y: float) -> None:
         canvas.setFillGray(BLOCKED_GRAY if kind == "blocked" else OBSTACLE_GRAY)
         canvas.rect(x + 3, y, 8, 8, stroke=0, fill=1)
     elif kind == "footprint":
+        canvas.setFillColorRGB(*FOOTPRINT_FILL_RGB)
         canvas.setStrokeColorRGB(*FOOTPRINT_RGB)
         canvas.setLineWidth(1.0)
-        canvas.rect(x + 3, y + 1, 8, 6, stroke=1, fill=0)
+        canvas.rect(x + 2, y + 1, 10, 6, stroke=1, fill=1)
+        canvas.setStrokeColorRGB(*HEADING_RGB)
+        canvas.setLineWidth(1.6)
+        canvas.line(x + 12, y + 1, x + 12, y + 7)
     canvas.restoreState()
 
 
@@ -278,7 +249,38 @@ def draw_legend(canvas: Canvas, layout: PageLayout, items: list[tuple[str, str]]
         x += width + 12.0
 
 
-# ----- the family's pages: legend, tree thinning --------------------------------------
+def start_mark(canvas: Canvas, x: float, y: float) -> None:
+    """The start: a green dot in a white ring, visible over a dense tree."""
+    canvas.saveState()
+    canvas.setFillGray(1.0)
+    canvas.circle(x, y, START_RADIUS + 1.6, stroke=0, fill=1)
+    canvas.setFillColorRGB(*START_RGB)
+    canvas.circle(x, y, START_RADIUS, stroke=0, fill=1)
+    canvas.restoreState()
+
+
+def draw_no_answer(canvas: Canvas, x: float, y: float, width: float,
+                   lines: Sequence[str]) -> None:
+    """Why there is nothing to draw (the planner timed out or did not start), in a
+    white box centred at (x, y) over the picture."""
+    if not lines:
+        return
+    size, step = 10.0, 13.0
+    shown = [_fit(canvas, line, "Helvetica", size, width - 16) for line in lines[:4]]
+    top = y + step * len(shown) / 2
+    canvas.saveState()
+    canvas.setFillGray(1.0)
+    canvas.setStrokeColorRGB(*FAILURE_RGB)
+    canvas.rect(x - width / 2, top - step * len(shown) - 6, width, step * len(shown) + 12,
+                stroke=1, fill=1)
+    canvas.setFillColorRGB(*FAILURE_RGB)
+    canvas.setFont("Helvetica-Bold", size)
+    for k, line in enumerate(shown):
+        canvas.drawCentredString(x, top - step * (k + 1) + 3, line)
+    canvas.restoreState()
+
+
+# ----- the family's pages: legend ------------------------------------------------------
 
 def family_legend_items(solution: bool, tree: bool, goal: bool, failure: bool,
                         footprint: bool, world, tree_label: str = "tree edges"
@@ -290,7 +292,7 @@ def family_legend_items(solution: bool, tree: bool, goal: bool, failure: bool,
     if tree:
         items.append(("tree", f"blue-grey: {tree_label}"))
     if footprint:
-        items.append(("footprint", "pink: body footprint along the solution"))
+        items.append(("footprint", "pink: body along the solution (dark edge: its front)"))
     items.append(("start", "green: start"))
     if goal:
         items.append(("goal", "blue outline: goal region"))
@@ -299,20 +301,3 @@ def family_legend_items(solution: bool, tree: bool, goal: bool, failure: bool,
     if world is not None and world.obstacles:
         items.append(("obstacle", "grey: obstacle"))
     return items
-
-
-def thinning(count: int, cost: int, options: RenderOptions) -> int:
-    """Draw every k-th of ``count`` tree edges costing ``cost`` vertices in all."""
-    return max(1, math.ceil(cost / options.max_tree_points),
-               math.ceil(count / options.max_tree_edges_drawn))
-
-
-def tree_note(total: int, kept: int, stride: int) -> str:
-    if total == 0:
-        return "no tree"
-    note = f"{total} tree edges"
-    if stride > 1:
-        note += f" (thinned: one in {stride} drawn)"
-    if kept < total:
-        note += f" (the first {kept} kept)"
-    return note

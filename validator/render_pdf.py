@@ -7,15 +7,14 @@ budgets are render_page's. The rendering modules (render_*.py) are the only ones
 that import reportlab; the family's are imported only to draw a family problem.
 
 Given a path, the PDF is written to a temporary file in the same folder and
-renamed over the path only when complete: a reader (or a second validator
-writing the same path) never sees half a file, and a failed render leaves none.
+renamed over the path only when complete (render_file): a reader (or a second
+validator writing the same path) never sees half a file, and a failed render
+leaves none.
 """
 
 from __future__ import annotations
 
 import os
-import stat
-import tempfile
 from typing import BinaryIO, Sequence
 
 from reportlab import rl_config
@@ -25,6 +24,7 @@ from planning_core.kinoplan import KinoplanProblem
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle
 from validator.checks import ValidationReport
+from validator.render_file import write_atomically
 from validator.render_grid import render_grid
 from validator.render_page import FamilyOptions, RenderOptions, RenderSummary
 
@@ -43,8 +43,8 @@ def render_pdf(out: BinaryIO | str | os.PathLike, problem: Problem | KinoplanPro
     ``vehicle`` is the grid's (unused for a kinoplan problem, which names its system).
     """
     if isinstance(out, (str, os.PathLike)):
-        return _render_to_path(os.fspath(out), problem, vehicle, report, verdict, notes,
-                               problem_label, options, family)
+        return write_atomically(os.fspath(out), lambda file: render_pdf(
+            file, problem, vehicle, report, verdict, notes, problem_label, options, family))
     # Binary (zlib only) streams: reportlab's ASCII85 step is pure Python, slower
     # than all the drawing, and makes the file a quarter bigger.
     saved_a85, rl_config.useA85 = rl_config.useA85, 0
@@ -61,7 +61,8 @@ def _render_family(out: BinaryIO, problem: KinoplanProblem, report: ValidationRe
                    verdict: str, notes: Sequence[str], label: str, options: RenderOptions,
                    family: FamilyOptions) -> RenderSummary:
     """The family's pages for ``problem``: its system's kind picks them."""
-    from validator.render_plot import PAGE, family_heading, page_text
+    from validator.render_geometry import family_heading
+    from validator.render_plot import PAGE, page_text
     canvas = Canvas(out, pagesize=PAGE, pageCompression=1, invariant=1)
     canvas.setTitle(f"rrt-validator: {label or 'problem'} ({problem.system_name})")
     canvas.setCreator("rrt-validator")
@@ -74,59 +75,3 @@ def _render_family(out: BinaryIO, problem: KinoplanProblem, report: ValidationRe
         summary = geometric_pages(canvas, problem, report, text, options, family)
     canvas.save()
     return summary
-
-
-def _render_to_path(path: str, *args) -> RenderSummary:
-    """render_pdf into a temporary file beside ``path``, then os.replace; the mode is
-    what ``open`` would give. A device, FIFO or /proc path, or a folder we cannot
-    create a file in (the file itself may still be writable), is written directly."""
-    temporary = _temporary_beside(path)
-    if temporary is None:
-        with open(path, "wb") as out:
-            return render_pdf(out, *args)
-    fd, temporary_path, target = temporary
-    try:
-        with os.fdopen(fd, "wb") as out:
-            summary = render_pdf(out, *args)
-        os.chmod(temporary_path, _new_file_mode(target))
-        os.replace(temporary_path, target)
-    except BaseException:
-        try:
-            os.unlink(temporary_path)
-        except OSError:
-            pass
-        raise
-    return summary
-
-
-def _temporary_beside(path: str) -> tuple[int, str, str] | None:
-    """(fd, name) of a new temporary file in the folder of ``path``'s target (through
-    symlinks, as ``open`` writes) and that target; None when ``path`` is not a
-    regular file (nor absent) or no file can be made there."""
-    if os.path.abspath(path).startswith(("/dev/", "/proc/")):
-        return None
-    try:
-        if not stat.S_ISREG(os.stat(path).st_mode):
-            return None
-    except FileNotFoundError:
-        pass
-    except OSError:
-        return None
-    target = os.path.realpath(path)
-    folder, name = os.path.split(target)
-    try:
-        fd, temporary_path = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
-    except OSError:
-        return None
-    return fd, temporary_path, target
-
-
-def _new_file_mode(target: str) -> int:
-    """The existing file's permissions, or 0o666 less the umask (mkstemp gives 0o600)."""
-    try:
-        return os.stat(target).st_mode & 0o7777
-    except OSError:
-        pass
-    umask = os.umask(0o022)
-    os.umask(umask)
-    return 0o666 & ~umask
