@@ -172,7 +172,8 @@ def run_one(config: GradeConfig, submission: str, item: Item, repeat: int) -> di
            "sandbox": sandbox.note, "log": _drop_if_empty(log), **_verdict(run, report)}
     if not row["valid"]:
         pdf = config.out / "pdf" / submission / f"{stem}.pdf"
-        row["pdf"] = _draw(pdf, problem, item.mode, report, solver_messages(run), item.problem)
+        row["pdf"] = _draw(pdf, problem, item.mode, report, solver_messages(run),
+                           f"{submission}: {stem}")
     return row
 
 

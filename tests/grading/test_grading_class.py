@@ -87,6 +87,9 @@ def test_report_links_the_failing_runs_pdfs(graded):
     report = (out / "report.md").read_text()
     assert "(pdf/garbage/simple-0-point.pdf)" in report
     assert (out / "pdf" / "garbage" / "simple-0-point.pdf").read_bytes()[:5] == b"%PDF-"
+    import pypdfium2 as pdfium  # the page says whose run it was
+    document = pdfium.PdfDocument(str(out / "pdf" / "garbage" / "simple-0-point.pdf"))
+    assert "garbage: simple-0-point" in document[0].get_textpage().get_text_range()
     assert "(pdf/garbage/pendulum-t3-kinoplan.pdf)" in report
     assert (out / "pdf" / "garbage" / "pendulum-t3-kinoplan.pdf").read_bytes()[:5] == b"%PDF-"
     assert not (out / "pdf" / "good").exists()
