@@ -9,7 +9,7 @@ import math
 import os
 from pathlib import Path
 
-from grading.markdown import failure_label
+from grading.summary import failure_label
 from grading.rubric import Item
 from grading.scores import Results, Scored, key, relative_time
 
