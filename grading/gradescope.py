@@ -9,9 +9,9 @@ import math
 import os
 from pathlib import Path
 
-from grading.summary import failure_label
 from grading.rubric import Item
 from grading.scores import Results, Scored, key, relative_time
+from grading.summary import failure_label
 
 MAX_OUTPUT = 4000  # characters of a test's output
 RESULTS = "results.json"
