@@ -24,6 +24,7 @@ from cli_common import OneLineErrorParser, positive_float, positive_int, say, wr
 from grading.config import KINOPLAN, MODE_FLAGS, GradeConfig
 from grading.grade import Busy, Outcome, grade
 from grading.gradescope import RESULTS, write_class, write_results
+from grading.html_report import write_html_report
 from grading.progress import Progress
 from grading.report import gradebook_rows, summary_table, write_gradebook, write_report
 from grading.rubric import MAX_REPEATS, Rubric, RubricError, check_modes, load_rubric
@@ -96,8 +97,8 @@ def build_parser() -> OneLineErrorParser:
         "Build each submission (a folder with make.sh and run.sh) once, run it on every "
         "problem (.sw in each mode, .kp) as the rubric says, validate each run, store each "
         "result in OUT/grades.sqlite as it finishes (a rerun resumes), and write "
-        "OUT/gradebook.csv and OUT/report.md. 'rrt-grade gradescope -h': Gradescope's "
-        "autograder."))
+        "OUT/gradebook.csv, OUT/report.md and OUT/report.html. 'rrt-grade gradescope -h': "
+        "Gradescope's autograder."))
     add = parser.add_argument
     add("--submissions", required=True, type=Path, metavar="DIR")
     add("--problems", required=True, type=Path, metavar="DIR", help="its *.sw and *.kp files")
@@ -194,6 +195,7 @@ def _finish(config: GradeConfig, outcome: Outcome) -> int:
     write_gradebook(config.out, rows)
     pairs = similar_pairs(config.submissions, graded.graded) if len(graded.graded) > 1 else []
     write_report(graded, pairs)
+    write_html_report(graded, pairs)
     if "gradescope" in config.formats:
         write_class(graded)
     notes = {row["sandbox"] for row in outcome.runs if row.get("sandbox")}
@@ -232,6 +234,7 @@ def gradescope_main(argv: list[str]) -> int:
     graded = results(config, outcome)
     write_results(args.results, graded, graded.graded[0])
     write_report(graded, [])
+    write_html_report(graded, [])
     say(f"{PROG}: wrote {args.results}")
     return 0 if write_stdout(summary_table(gradebook_rows(graded))) is None else EXIT_OURS
 

@@ -56,9 +56,9 @@ def grade(config: GradeConfig, progress: Progress | None = None) -> Outcome:
     progress = progress or Progress(None)
     config.out.mkdir(parents=True, exist_ok=True)
     with _only_grading(config.out), contextlib.closing(Store(config.out)) as store:
-        if config.rerun:  # and what the earlier runs left: logs, PDFs, built folders
+        if config.rerun:  # and what the earlier runs left: logs, pictures, built folders
             store.clear()
-            for folder in ("logs", "pdf", "built"):
+            for folder in ("logs", "pdf", "html", "built"):
                 shutil.rmtree(config.out / folder, ignore_errors=True)
         with _Executor(config) as executor:
             tasks = _Tasks(executor, config.jobs, progress)

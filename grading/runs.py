@@ -171,9 +171,8 @@ def run_one(config: GradeConfig, submission: str, item: Item, repeat: int) -> di
            "output_bytes": len(run.output), "output_sha256": _digest(run.output),
            "sandbox": sandbox.note, "log": _drop_if_empty(log), **_verdict(run, report)}
     if not row["valid"]:
-        pdf = config.out / "pdf" / submission / f"{stem}.pdf"
-        row["pdf"] = _draw(pdf, problem, item.mode, report, solver_messages(run),
-                           f"{submission}: {stem}")
+        row.update(_draw(config.out, submission, stem, problem, item.mode, report,
+                         solver_messages(run)))
     return row
 
 
@@ -225,16 +224,26 @@ def _verdict(run: PlannerRun, report: ValidationReport | None) -> dict:
             "tree_size": report.tree_count if plan is not None else None}
 
 
-def _draw(pdf: Path, problem: GradedProblem, mode: str, report: ValidationReport | None,
-          notes: list[str], label: str) -> str | None:
-    """The failing run's PDF (the validator's drawing); None if it could not be drawn
-    (reportlab missing among them)."""
-    pdf.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        from validator.checks import INVALID_VERDICT
-        from validator.render_pdf import render_pdf  # reportlab: only for failing runs
-        render_pdf(str(pdf), problem.problem, problem.vehicle(mode), report, INVALID_VERDICT,
-                   notes, label)
-    except Exception:  # a drawing problem must not cost the run its row
-        return None
-    return str(pdf)
+PICTURES = (("pdf", "pdf", ".pdf"), ("view", "html", ".html"))
+"""A failing run's pictures: its row's column, its folder in ``--out`` (then
+``SUBMISSION/STEM``), its format (validator.render_output's extension)."""
+
+
+def _draw(out: Path, submission: str, stem: str, problem: GradedProblem, mode: str,
+          report: ValidationReport | None, notes: list[str]) -> dict:
+    """A failing run's PDF and browser view (the validator's drawings), by column; a
+    picture that could not be drawn (reportlab missing among them) is None."""
+    from validator.checks import INVALID_VERDICT
+    from validator.render_output import write_picture  # each format's module: only now
+    drawn = {}
+    for column, folder, extension in PICTURES:
+        path = out / folder / submission / f"{stem}{extension}"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            write_picture(str(path), extension, problem.problem, problem.vehicle(mode), report,
+                          INVALID_VERDICT, notes, f"{submission}: {stem}")
+        except Exception:  # a drawing problem must not cost the run its row
+            drawn[column] = None
+        else:
+            drawn[column] = str(path)
+    return drawn

@@ -14,7 +14,7 @@ BUILD_COLUMNS = ("submission", "ok", "reason", "exit_status", "wall_time", "log"
 RUN_COLUMNS = ("submission", "problem", "mode", "repeat", "verdict", "valid",
                "failed_check", "message", "detail", "exit_status", "signal", "timed_out",
                "wall_time", "path_length", "trajectory_size", "tree_size", "output_bytes",
-               "output_sha256", "sandbox", "pdf", "log")
+               "output_sha256", "sandbox", "pdf", "view", "log")
 CALIBRATION_COLUMNS = ("problem", "mode", "verdict", "valid", "wall_time", "command")
 
 _SCHEMA = """
@@ -31,6 +31,7 @@ CREATE TABLE IF NOT EXISTS runs (
     path_length REAL, trajectory_size INTEGER, tree_size INTEGER, output_bytes INTEGER,
     output_sha256 TEXT,             -- of its stdout, when it printed something
     sandbox TEXT, pdf TEXT, log TEXT,
+    view TEXT,                      -- a failing run's browser view (html/SUBMISSION/...)
     finished TEXT NOT NULL DEFAULT (datetime('now')),
     PRIMARY KEY (submission, problem, mode, repeat));
 CREATE TABLE IF NOT EXISTS calibration (
@@ -61,6 +62,8 @@ class Store:
                              or column == "finished")
             self.db.executescript("BEGIN;" + _UPGRADE.format(schema=_SCHEMA, columns=kept)
                                   + "COMMIT;")
+        elif columns and "view" not in columns:  # written before runs had views
+            self.db.execute("ALTER TABLE runs ADD COLUMN view TEXT")
         self.db.executescript(_SCHEMA)
 
     def close(self) -> None:

@@ -1,5 +1,5 @@
 """What submissions and planners wrote (names, messages, details), shown as text
-wherever it goes: a spreadsheet cell, a terminal, Markdown."""
+wherever it goes: a spreadsheet cell, a terminal, Markdown (HTML: grading.html_report)."""
 
 from __future__ import annotations
 
@@ -33,6 +33,12 @@ def text(value) -> str:
     return html.escape(" ".join(str(value).split()), quote=False).translate(_MARKDOWN)
 
 
+def relative_url(path: str | Path, base: Path) -> str:
+    """``path`` relative to the folder ``base``, as a URL's path (every character that is
+    not a plain path character percent-encoded: a name stays one name)."""
+    return quote(os.path.relpath(path, base))
+
+
 def link(label: str, path: str, out: Path) -> str:
     """A Markdown link to ``path`` relative to ``out`` (``label`` already text)."""
-    return f"[{label}]({quote(os.path.relpath(path, out))})"
+    return f"[{label}]({relative_url(path, out)})"
