@@ -14,6 +14,7 @@ from grading.cli import main
 from grading.runs import sandbox_here
 from grading.sandbox import FULL
 from grading_fixtures import CLASS, make_class, nap
+from tests.validator.browser import Chromium, find_chromium
 
 MODES = ["point", "grad"]
 PROBLEMS = ["simple-0.sw", "pendulum-t3.kp"]
@@ -167,3 +168,65 @@ def test_each_distinct_failure_is_listed_once_with_its_count(graded):
     assert len(failures) == 1 and failures[0].startswith("- invalid (parse): ")
     assert failures[0].endswith(": 3 runs (pendulum-t3.kp: kinoplan; simple-0.sw: point, "
                                 "grad)"), failures
+
+
+def test_a_failing_runs_view_is_written_beside_its_submissions_page(graded):
+    rows, out = graded[1], graded[2]
+    by = {(r["submission"], r["mode"]): r for r in rows}
+    for mode, stem in (("point", "simple-0-point"), ("kinoplan", "pendulum-t3-kinoplan")):
+        view = out / "html" / "garbage" / f"{stem}.html"
+        assert by["garbage", mode]["view"] == str(view)
+        assert view.read_text().startswith("<!DOCTYPE html>") and "garbage: " + stem in \
+            view.read_text()
+    assert by["good", "point"]["view"] is None and not (out / "html" / "good" / "simple-0-point"
+                                                        ".html").exists()
+    page = (out / "html" / "garbage" / "index.html").read_text()
+    assert 'data-src="simple-0-point.html"' in page and 'href="simple-0-point.html"' in page
+    assert 'href="../../pdf/garbage/simple-0-point.pdf"' in page
+    assert 'href="html/garbage/index.html"' in (out / "report.html").read_text()
+
+
+@pytest.mark.skipif(find_chromium() is None, reason="no Chromium: ./make.sh installs Debian's "
+                    "chromium where it can (apt-get, as root)")
+def test_a_submissions_page_shows_a_failing_runs_view_in_the_browser(graded):
+    with Chromium(find_chromium()) as browser:
+        browser.open((graded[2] / "report.html").as_uri())
+        browser.wait_for(lambda: browser.evaluate("window.rrtReport && window.rrtReport.ready"))
+        assert browser.console_errors() == []
+        browser.open((graded[2] / "html" / "garbage" / "index.html").as_uri())
+        browser.wait_for(lambda: browser.evaluate("window.rrtReport && window.rrtReport.ready"))
+        assert browser.evaluate("document.querySelectorAll('details.view').length") == 3
+        browser.evaluate("document.querySelector('details.view summary').click()")
+        frame = next_frame(browser)
+        browser.wait_for(lambda: in_frame(browser, frame, "window.rrtView && window.rrtView"
+                                                          ".ready"))
+        assert in_frame(browser, frame, "document.getElementById('failure').textContent"
+                        ).startswith("First failure (check 1, line 1): Error parsing planner")
+        assert browser.console_errors() == []
+
+
+def next_frame(browser) -> str:
+    """The id of the page's frame that has loaded a file (the view opened)."""
+    found = []
+
+    def loaded() -> bool:
+        frames = browser.call("Page.getFrameTree")["frameTree"].get("childFrames", [])
+        found[:] = [f["frame"]["id"] for f in frames if f["frame"]["url"].startswith("file:")]
+        return bool(found)
+    browser.wait_for(loaded)
+    return found[0]
+
+
+def in_frame(browser, frame: str, expression: str):
+    """``expression``'s value in the frame's page (the newest script context of it)."""
+    gone = {event["params"]["executionContextId"] for event in browser.events
+            if event.get("method") == "Runtime.executionContextDestroyed"}
+    contexts = [event["params"]["context"]["id"] for event in browser.events
+                if event.get("method") == "Runtime.executionContextCreated"
+                and event["params"]["context"]["auxData"].get("frameId") == frame
+                and event["params"]["context"]["id"] not in gone]
+    if not contexts:
+        return None
+    answer = browser.call("Runtime.evaluate", expression=expression, contextId=contexts[-1],
+                          returnByValue=True)
+    return answer.get("result", {}).get("value")
