@@ -25,7 +25,8 @@ from grading.report import gradebook_rows
 from grading.scores import Results, Scored, key, modes_used, relative_time
 from grading.summary import (Distribution, Failure, class_failures, distribution,
                              failure, failure_label, flaky_items, item_verdict, median_time,
-                             pass_counts, problems, slowest_runs, submission_failures, where)
+                             pass_counts, problems, slowest_runs, standing,
+                             submission_failures, where)
 from grading.text import relative_url
 from validator.render_file import write_atomically
 
@@ -282,21 +283,16 @@ def submission_page(out: Path, name: str) -> Path:
 
 def facts(report: Results, one: Scored, here: Path) -> str:
     """Score, build (its log), sandbox, median time."""
-    build = report.builds.get(one.name, {})
-    runs = one.all_runs()
-    flakes = len(flaky_items([one]))
+    found = standing(report, one)
+    build = found.build
     built = "ok" if build.get("ok") else f"failed: {esc(build.get('reason'))}"
     if build.get("log"):
         built += f" ({link('log', build['log'], here)})"
-    items = [f"Score: <b>{one.score:.{report.rubric.digits}f}</b> out of "
-             f"{report.rubric.full_score(report.items):g} "
-             f"({sum(row['valid'] for row in runs)} of {len(runs)} runs valid"
-             + (f"; {flakes} flaky" if flakes else "") + ")",
+    items = [f"Score: <b>{found.score}</b> out of {found.full} ({found.counts})",
              f"Build: {built}", f"Sandbox: {esc(build.get('sandbox') or 'unknown')}"]
-    median = median_time(report, one)
-    if median:
-        items.append(f"Time: median {times(median[0])} of our planner's over its "
-                     f"{median[1]} valid runs")
+    if found.median:
+        items.append(f"Time: median {times(found.median[0])} of our planner's over its "
+                     f"{found.median[1]} valid runs")
     return "<ul class=\"facts\">" + "".join(f"<li>{item}</li>" for item in items) + "</ul>"
 
 

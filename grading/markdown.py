@@ -10,8 +10,8 @@ from pathlib import Path
 
 from grading.scores import Results, Scored, key, modes_used, relative_time
 from grading.summary import (Failure, class_failures, distribution, failure_label,
-                             flaky_items, item_verdict, median_time, pass_counts, problems, slowest_runs,
-                             submission_failures, where)
+                             flaky_items, item_verdict, pass_counts, problems, slowest_runs,
+                             standing, submission_failures, where)
 from grading.text import link, text
 
 NAMES_SHOWN = 8  # submissions named for one failure in the class summary
@@ -158,23 +158,18 @@ def submission_failures_section(report: Results, one: Scored) -> list[str]:
 
 def submission_section(report: Results, one: Scored) -> list[str]:
     """A submission: score, build, sandbox, times, the problem x mode table, failures."""
-    build = report.builds.get(one.name, {})
-    runs = one.all_runs()
-    flakes = len(flaky_items([one]))
+    facts = standing(report, one)
+    build = facts.build
     built = "ok" if build.get("ok") else f"failed: {text(build.get('reason'))}"
     if build.get("log"):
         built += f" ({link('log', build['log'], report.out)})"
     lines = [f"## {text(one.name)}", "",
-             f"- Score: **{one.score:.{report.rubric.digits}f}** out of "
-             f"{report.rubric.full_score(report.items):g} "
-             f"({sum(row['valid'] for row in runs)} of {len(runs)} runs valid"
-             + (f"; {flakes} flaky" if flakes else "") + ")",
+             f"- Score: **{facts.score}** out of {facts.full} ({facts.counts})",
              f"- Build: {built}",
              f"- Sandbox: {text(build.get('sandbox') or 'unknown')}"]
-    median = median_time(report, one)
-    if median:
-        lines.append(f"- Time: median {times(median[0])} of our planner's "
-                     f"over its {median[1]} valid runs")
+    if facts.median:
+        lines.append(f"- Time: median {times(facts.median[0])} of our planner's "
+                     f"over its {facts.median[1]} valid runs")
     modes = modes_used(report.items)
     lines += ["", "| problem | " + " | ".join(modes) + " |", "|---|" + "---|" * len(modes)]
     graded = {key(item) for item in report.items}

@@ -138,6 +138,27 @@ def where(rows: Iterable[dict], items: list[Item]) -> list[tuple[str, list[str]]
     return list(by_problem.items())
 
 
+@dataclass(frozen=True)
+class Standing:
+    """A submission's score and runs as both reports state them."""
+
+    score: str      # with the rubric's digits
+    full: str       # the full score
+    counts: str     # ``4 of 6 runs valid; 2 flaky``
+    build: dict     # its ``builds`` row ({} when there is none)
+    median: tuple[float, int] | None  # median_time
+
+
+def standing(report: Results, one: Scored) -> Standing:
+    runs = one.all_runs()
+    flakes = len(flaky_items([one]))
+    counts = f"{sum(row['valid'] for row in runs)} of {len(runs)} runs valid" + (
+        f"; {flakes} flaky" if flakes else "")
+    return Standing(f"{one.score:.{report.rubric.digits}f}",
+                    f"{report.rubric.full_score(report.items):g}", counts,
+                    report.builds.get(one.name, {}), median_time(report, one))
+
+
 def median_time(report: Results, one: Scored) -> tuple[float, int] | None:
     """The median of a submission's valid runs' times relative to our planner's, and
     over how many runs; None without any."""
