@@ -142,7 +142,9 @@ def test_the_command_runs_a_family_preset_end_to_end(tmp_path):
     assert all(float(r["path_duration"]) > 0 for r in rows)
     report = (tmp_path / "report.md").read_text()
     assert "### pendulum-t10" in report and "| rrt (ours)" in report
-    assert "Blossom" in report and not (tmp_path / "plots.pdf").exists()
+    assert "Blossom" in report and (tmp_path / "plots.pdf").exists()
+    page = (tmp_path / "report.html").read_text()
+    assert page.count("<svg") == 3 and "control duration (s)" in page  # time, success, cost
     again = run(["benchmarks", "--preset", "family-quick", "--report-only", "--out",
                  str(tmp_path)])
     assert again.returncode == 0 and (tmp_path / "report.md").read_text() == report
