@@ -409,6 +409,9 @@ def targets_table(rows: Sequence[RunRow], shortest: Mapping[str, float] | None =
     body = [(check.target, marks[check.met], check.detail) if check.runs >= min_runs
             else (check.target, "–", not_judged(check.runs, min_runs))
             for check in check_targets(rows, shortest)]
+    if not body:
+        return ["No target has runs to judge in this run (OMPL's RRT or the planners left "
+                "out, or maps too small)."]
     return markdown_table(("Target", "Met", "Measured"), body, "lcl")
 
 
