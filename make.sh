@@ -91,6 +91,10 @@ install() {
         if ! "${PIP[@]}" -e ".[grade]" >>"$LOG" 2>&1; then
             step "note: distributed could not be installed (see $LOG); rrt-grade runs locally only"
         fi
+        step "installing Planner Arena, to test that it reads runs.sqlite (optional)"
+        if ! "${PIP[@]}" -e ".[arena]" >>"$LOG" 2>&1; then
+            step "note: plannerarena could not be installed (see $LOG); its test will be skipped"
+        fi
         step "installing mypy, the hot modules' compiler (optional)"
         if ! "${PIP[@]}" -e ".[compile]" >>"$LOG" 2>&1; then
             step "note: mypy could not be installed (see $LOG); the hot modules run interpreted"
