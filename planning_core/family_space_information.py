@@ -126,6 +126,14 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         """The metric (each instance shadows this with the kd-tree's)."""
         return self.space.distance(a, b)
 
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The metric (what :meth:`new_nearest` orders by)."""
+        return self.closeness(a, b)
+
+    def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
+        """The motion's duration: K (the control's last value) slices of dt."""
+        return control[-1] * self.system.dt
+
     def random_motion(self, state: Sequence[float],
                       rng: random.Random) -> Optional[tuple[Any, list[State]]]:
         """Random held values and K (in that order), cut at the first invalid slice:

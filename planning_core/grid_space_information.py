@@ -209,6 +209,16 @@ class GridControlSpaceInformation:
         dx, dy = end[0] - target[0], end[1] - target[1]
         return dx * dx + dy * dy
 
+    @staticmethod
+    def distance(a: Sequence[float], b: Sequence[float]) -> float:
+        """The distance of the positions (what :meth:`new_nearest` orders by)."""
+        return math.hypot(a[0] - b[0], a[1] - b[1])
+
+    def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
+        """One step's cost: the distance of its positions (a path's cost is the sum over
+        its steps, the length of the polyline through its printed positions)."""
+        return math.hypot(a[0] - b[0], a[1] - b[1])
+
     def random_motion(self, state: tuple[float, ...],
                       rng: random.Random) -> Optional[tuple[Any, list]]:
         """A random control held for ``min_steps`` to ``max_steps`` steps (drawn in

@@ -11,7 +11,7 @@ space information of the goal's own substrate asks for the rest.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol, Sequence
+from typing import Optional, Protocol, Sequence
 
 State = tuple[float, ...]
 
@@ -31,6 +31,20 @@ class Goal(Protocol):
 
 
 @dataclass(frozen=True)
+class Objective:
+    """Keep improving the path's cost after the first solution (OMPL's optimization
+    objective with its cost threshold): an optimizing planner stops when the cost is
+    at most ``threshold`` or its time is up. The cost itself is the space
+    information's (``motion_cost``, or ``distance`` for straight motions)."""
+
+    threshold: float = 0.0
+    """A cost good enough to stop at (0: none is, run until the time limit)."""
+
+    def satisfied(self, cost: float) -> bool:
+        return cost <= self.threshold
+
+
+@dataclass(frozen=True)
 class ProblemDefinition:
     """The start state and the goal region a planner is asked to join."""
 
@@ -38,3 +52,5 @@ class ProblemDefinition:
     """The first state of every path (the grid's ship: at rest)."""
     goal: Goal
     """The region a path's last state must reach."""
+    objective: Optional[Objective] = None
+    """None: the first solution is the answer; else keep improving it."""

@@ -60,7 +60,10 @@ class GeometricSpaceInformation(Protocol):
     """How far a motion cut short stops before its first invalid state (the grid:
     a map unit; the family: one check step)."""
 
-    def distance(self, a: Sequence[float], b: Sequence[float]) -> float: ...
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The state space's distance; also the cost of the straight motion a -> b (a
+        path's cost is its length: map units for the point, the metric for arm2 and
+        rigid2)."""
 
     def interpolate(self, a: Sequence[float], b: Sequence[float], t: float) -> State: ...
 
@@ -119,6 +122,14 @@ class ControlSpaceInformation(Protocol):
     def closeness(self, a: Sequence[float], b: Sequence[float]) -> float:
         """Orders pairs as the space's distance does (the grid: the squared distance
         of the positions; the family: the metric): compared, never added."""
+
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The distance :meth:`new_nearest` orders by (the grid: of the positions; the
+        family: the metric), for radii such as SST's."""
+
+    def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
+        """The cost of the motion ``a`` -> ``b`` under ``control`` (the grid's ships:
+        the distance of its positions; the family: its duration, K slices of dt)."""
 
     def sample_control(self, rng: random.Random) -> Any: ...
 

@@ -29,6 +29,7 @@ from cli_common import (EXIT_USAGE, add_vehicle_flags, bounded_integer, describe
                         read_problem_from_stdin, reject_vehicle_flags, reserve_standard_fds,
                         say, vehicle_from_flags, write_stdout)
 from planning_core.plan_text import format_plan
+from planning_core.problem_definition import Objective
 from planning_core.setups import grid_setup, kinoplan_setup
 from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import OUT_OF_MEMORY_MESSAGE, PlanStatus, StopCondition
@@ -72,6 +73,12 @@ def build_parser() -> cli_common.OneLineErrorParser:
     parser.add_argument("-smooth", action="store_true",
                         help="geometric systems (point vehicle, arm2, rigid2): shorten the "
                              "solution by shortcuts (off by default)")
+    parser.add_argument("-optimize", action="store_true",
+                        help="optimizing planners (sst, rrtstar, informed): keep improving "
+                             "the answer's cost until -time, then print the best found")
+    parser.add_argument("-cost", type=positive_float, default=None, metavar="C",
+                        help="with an optimizing planner: stop as soon as the cost is at "
+                             "most C (implies -optimize)")
     parser.add_argument("-stats", action="store_true",
                         help="print one line of key=value statistics on stderr")
     return parser
@@ -83,12 +90,12 @@ def _known_planner(name: str) -> str:
     return name
 
 
-_SWITCHES = ("-ugrad", "-grad", "-left", "-smooth", "-stats")
+_SWITCHES = ("-ugrad", "-grad", "-left", "-smooth", "-stats", "-optimize")
 _VALUED = {"-planner": _known_planner, "-seed": seed, "-time": positive_float,
-           "-iterations": positive_int}
+           "-iterations": positive_int, "-cost": positive_float}
 _DEFAULTS = {"ugrad": False, "grad": False, "left": False, "smooth": False, "stats": False,
-             "planner": DEFAULT_PLANNER, "seed": None, "time": DEFAULT_TIME_LIMIT,
-             "iterations": DEFAULT_ITERATIONS}
+             "optimize": False, "cost": None, "planner": DEFAULT_PLANNER, "seed": None,
+             "time": DEFAULT_TIME_LIMIT, "iterations": DEFAULT_ITERATIONS}
 
 
 def quick_parse(argv: list[str]) -> SimpleNamespace | None:
@@ -135,6 +142,11 @@ def _setup(parser, args, entry):
     vehicle = vehicle_from_flags(parser, args)
     if args.smooth and vehicle.system.kinodynamic:
         parser.error("-smooth works on geometric systems only (the point vehicle, arm2, rigid2)")
+    if (args.optimize or args.cost is not None) and not entry.optimizing:
+        optimizing = " or ".join(name for name, e in sorted(PLANNERS.items()) if e.optimizing)
+        say(f"rrt_cli: error: planner {args.planner!r} stops at its first solution; "
+            f"-optimize and -cost work with -planner {optimizing}")
+        return None
     flags_given = args.ugrad or args.grad or args.left
     if flags_given and not entry.plans_for(vehicle.system):  # refused before reading stdin
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
@@ -177,17 +189,17 @@ def main(argv: list[str] | None = None) -> int:
     rng = random.Random(run_seed)
     planner = entry.load()
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
-    result = planner.solve(setup.si, setup.pdef, stop, rng, planner.Params())
+    pdef = setup.pdef
+    if args.optimize or args.cost is not None:
+        pdef = dataclasses.replace(pdef, objective=Objective(args.cost or 0.0))
+    result = planner.solve(setup.si, pdef, stop, rng, planner.Params())
     if args.smooth and result.solved:
         from rrt_cli.smoothing import smooth_path  # only with -smooth: start-up
         result = dataclasses.replace(result, path=smooth_path(setup.si, result.path, rng))
     stats = result.stats
     if args.stats:
-        # One key=value line, stable for scripts (the benchmark harness parses it).
-        say(f"rrt_cli stats: status={result.status.name.lower()} "
-            f"planner={args.planner} vehicle={vehicle_name} seed={run_seed} "
-            f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
-            f"planning_seconds={stats.planning_seconds:.6f}")
+        say_stats(setup.si, result, f"planner={args.planner} vehicle={vehicle_name} "
+                                    f"seed={run_seed}")
     if result.status is PlanStatus.OUT_OF_MEMORY:
         say(f"rrt_cli: out of memory: {result.message} (after "
             f"{stats.planning_seconds:.2f} s, seed {run_seed})")
@@ -205,6 +217,22 @@ def main(argv: list[str] | None = None) -> int:
     if not isinstance(failure, BrokenPipeError):  # a reader that left (| head) wants no note
         say(f"rrt_cli: cannot write the answer to stdout: {describe_os_error(failure)}")
     return EXIT_OUTPUT_FAILED
+
+
+def say_stats(si, result, names: str) -> None:
+    """The -stats line: key=value pairs, stable for scripts (the benchmark harness
+    parses it); cost and first_solution_seconds are "none" without a solution."""
+    stats = result.stats
+    cost = first = "none"
+    if result.solved:
+        from planning_core.costs import path_cost
+        cost = f"{path_cost(si, result.path, result.path_controls):.9g}"
+        seconds = stats.first_solution_seconds
+        first = f"{stats.planning_seconds if seconds is None else seconds:.6f}"
+    say(f"rrt_cli stats: status={result.status.name.lower()} {names} "
+        f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
+        f"planning_seconds={stats.planning_seconds:.6f} cost={cost} "
+        f"first_solution_seconds={first}")
 
 
 def entry_point() -> None:

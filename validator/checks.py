@@ -15,9 +15,11 @@ it happens (for the PDF).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
+from planning_core.costs import path_cost
 from planning_core.goal import GOAL_TOLERANCE
 from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
 from planning_core.plan_rows import row_widths
@@ -140,6 +142,10 @@ class ValidationReport:
     path_length: float | None = None
     # Spaceship: the state the last line's control leads to (not printed by planners).
     final_state: tuple[float, float, float, float] | None = None
+    cost: float | None = None
+    """A valid answer's cost (:func:`answer_cost`), else None."""
+    cost_kind: str = "length"
+    """What the cost measures: "length", or "duration" (the family's kinodynamic systems)."""
 
     @property
     def vehicle(self) -> Vehicle:
@@ -770,5 +776,21 @@ def validate_plan(setup: Setup, output_text: str, strict: bool = False,
         validation = _KinoplanValidation if setup.system.kinodynamic else _GeometricValidation
     run = validation(setup, strict, limits)
     checks = run.run(output_text, output_cap_exceeded)
-    return ValidationReport(setup.system, strict, checks, run.warnings, run.corner_cuts, run.plan,
-                            run.path_length, run.final_state)
+    report = ValidationReport(setup.system, strict, checks, run.warnings, run.corner_cuts,
+                              run.plan, run.path_length, run.final_state,
+                              cost_kind="duration" if setup.rows_end_in_count else "length")
+    if not report.valid:
+        return report
+    return dataclasses.replace(report, cost=answer_cost(setup.si, run.plan, run.final_state))
+
+
+def answer_cost(si, plan: PlanArrays, final_state) -> float:
+    """A valid answer's cost as the optimizing planners count it
+    (:func:`planning_core.costs.path_cost`: a geometric system's length, a ship's
+    polyline through its printed positions, a family system's duration)."""
+    rows = list(plan.trajectory_rows())
+    if not si.system.kinodynamic:
+        return path_cost(si, rows)
+    dims = len(si.system.state_names)
+    states = [row[:dims] for row in rows] + [tuple(final_state)]
+    return path_cost(si, states, [row[dims:] for row in rows])

@@ -159,6 +159,8 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
                    "tree": report.tree_count if report else None,
                    "corner_cuts": len(report.corner_cuts) if report else None},
         "path_length": report.path_length if report else None,
+        "cost": report.cost if report else None,
+        "cost_kind": report.cost_kind if report and report.cost is not None else None,
         "planner": {"command": list(run.command), "started": run.started,
                     "start_error": run.start_error or None, "exit_code": run.exit_code,
                     "signal": run.signal, "timed_out": run.timed_out,

@@ -32,6 +32,8 @@ class PlannerEntry:
     summary: str
     family_only: bool = False
     """It asks what only the family's space information answers (blossom: ``advance``)."""
+    optimizing: bool = False
+    """It keeps improving its answer when the problem has an objective (``-optimize``)."""
 
     def load(self):
         return importlib.import_module(self.module)

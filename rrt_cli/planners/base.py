@@ -6,7 +6,7 @@ import functools
 import time
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
+from typing import Any, Optional
 
 from planning_core.interrupt import Interrupted
 
@@ -56,6 +56,12 @@ class PlanStats:
     iterations: int
     tree_nodes: int
     planning_seconds: float
+    first_solution_seconds: Optional[float] = None
+    """When the first solution was found (None: none, or the planner stops at its first:
+    then it is ``planning_seconds``)."""
+    improvements: tuple[tuple[float, float], ...] = ()
+    """An optimizing planner's ``(seconds, cost)`` at each better solution (the
+    benchmarks' cost against time)."""
 
 
 Edge = tuple  # (from_state, control or None, to_state)
