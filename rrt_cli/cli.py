@@ -182,6 +182,8 @@ def main(argv: list[str] | None = None) -> int:
             f"planner={args.planner} vehicle={vehicle_name} seed={run_seed} "
             f"iterations={stats.iterations} tree_nodes={stats.tree_nodes} "
             f"planning_seconds={stats.planning_seconds:.6f}")
+        from planning_core.kernels import describe  # only with -stats: start-up
+        say(f"rrt_cli kernels: {describe(setup)}")
     if result.status is PlanStatus.OUT_OF_MEMORY:
         say(f"rrt_cli: out of memory: {result.message} (after "
             f"{stats.planning_seconds:.2f} s, seed {run_seed})")
