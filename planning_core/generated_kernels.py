@@ -354,19 +354,11 @@ class PendulumEuler:
     """pendulum, euler: theta' = omega; omega' = -g * cos(theta) + tau."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[None]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self.g: float = constants[0]
         self._lo1: float = lows[1]
         self._hi1: float = highs[1]
-        self._body: Optional[None] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 2:
-            return False
-        theta, omega = state
-        return (theta - theta == 0.0 and omega - omega == 0.0
-                and self._lo1 <= omega <= self._hi1)
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -381,6 +373,13 @@ class PendulumEuler:
             if out is not None:
                 out.append((theta, omega))
         return (theta, omega)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 2:
+            return False
+        theta, omega = state
+        return (theta - theta == 0.0 and omega - omega == 0.0
+                and self._lo1 <= omega <= self._hi1)
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -409,21 +408,13 @@ class PendulumRk4:
     """pendulum, rk4: theta' = omega; omega' = -g * cos(theta) + tau."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[None]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._half: float = dt / 2.0
         self._sixth: float = dt / 6.0
         self.g: float = constants[0]
         self._lo1: float = lows[1]
         self._hi1: float = highs[1]
-        self._body: Optional[None] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 2:
-            return False
-        theta, omega = state
-        return (theta - theta == 0.0 and omega - omega == 0.0
-                and self._lo1 <= omega <= self._hi1)
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -450,6 +441,13 @@ class PendulumRk4:
             if out is not None:
                 out.append((theta, omega))
         return (theta, omega)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 2:
+            return False
+        theta, omega = state
+        return (theta - theta == 0.0 and omega - omega == 0.0
+                and self._lo1 <= omega <= self._hi1)
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -491,7 +489,7 @@ class Car2Euler:
     """car2, euler: x' = v * cos(theta); y' = v * sin(theta); theta' = omega; v' = a."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._lo0: float = lows[0]
         self._hi0: float = highs[0]
@@ -499,16 +497,6 @@ class Car2Euler:
         self._hi1: float = highs[1]
         self._lo3: float = lows[3]
         self._hi3: float = highs[3]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 4:
-            return False
-        x, y, theta, v = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
-                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
-                and self._lo3 <= v <= self._hi3
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -526,6 +514,58 @@ class Car2Euler:
             if out is not None:
                 out.append((x, y, theta, v))
         return (x, y, theta, v)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 4:
+            return False
+        x, y, theta, v = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._lo3 <= v <= self._hi3)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, _lo0, _hi0, _lo1, _hi1, _lo3, _hi3 = (
+            self._dt, self._lo0, self._hi0, self._lo1, self._hi1, self._lo3, self._hi3)
+        x, y, theta, v = state
+        omega, a = control[0], control[1]
+        _last0, _last1, _last2, _last3 = x, y, theta, v
+        for k in range(kmax):
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = omega
+            _k1_3 = a
+            x, y, theta, v = (
+                x + _dt * _k1_0, y + _dt * _k1_1, theta + _dt * _k1_2, v + _dt * _k1_3)
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                    and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1 and _lo3 <= v <= _hi3):
+                return (_last0, _last1, _last2, _last3), k
+            _last0, _last1, _last2, _last3 = x, y, theta, v
+        return (x, y, theta, v), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class Car2EulerBody(Car2Euler):
+    """Car2Euler, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 4:
+            return False
+        x, y, theta, v = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._lo3 <= v <= self._hi3 and self._body.free(x, y, theta))
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -545,23 +585,17 @@ class Car2Euler:
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
                     and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1 and _lo3 <= v <= _hi3
-                    and (_body is None or _body.free(x, y, theta))):
+                    and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2, _last3), k
             _last0, _last1, _last2, _last3 = x, y, theta, v
         return (x, y, theta, v), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 class Car2Rk4:
     """car2, rk4: x' = v * cos(theta); y' = v * sin(theta); theta' = omega; v' = a."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._half: float = dt / 2.0
         self._sixth: float = dt / 6.0
@@ -571,16 +605,6 @@ class Car2Rk4:
         self._hi1: float = highs[1]
         self._lo3: float = lows[3]
         self._hi3: float = highs[3]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 4:
-            return False
-        x, y, theta, v = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
-                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
-                and self._lo3 <= v <= self._hi3
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -622,6 +646,83 @@ class Car2Rk4:
             if out is not None:
                 out.append((x, y, theta, v))
         return (x, y, theta, v)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 4:
+            return False
+        x, y, theta, v = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._lo3 <= v <= self._hi3)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, _half, _sixth, _lo0, _hi0, _lo1, _hi1, _lo3, _hi3 = (
+            self._dt, self._half, self._sixth, self._lo0, self._hi0, self._lo1, self._hi1,
+            self._lo3, self._hi3)
+        x, y, theta, v = state
+        omega, a = control[0], control[1]
+        _last0, _last1, _last2, _last3 = x, y, theta, v
+        for k in range(kmax):
+            _s0, _s1, _s2, _s3 = x, y, theta, v
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = omega
+            _k1_3 = a
+            x, y, theta, v = (
+                _s0 + _half * _k1_0, _s1 + _half * _k1_1, _s2 + _half * _k1_2,
+                _s3 + _half * _k1_3)
+            _k2_0 = v * cos(theta)
+            _k2_1 = v * sin(theta)
+            _k2_2 = omega
+            _k2_3 = a
+            x, y, theta, v = (
+                _s0 + _half * _k2_0, _s1 + _half * _k2_1, _s2 + _half * _k2_2,
+                _s3 + _half * _k2_3)
+            _k3_0 = v * cos(theta)
+            _k3_1 = v * sin(theta)
+            _k3_2 = omega
+            _k3_3 = a
+            x, y, theta, v = (
+                _s0 + _dt * _k3_0, _s1 + _dt * _k3_1, _s2 + _dt * _k3_2, _s3 + _dt * _k3_3)
+            _k4_0 = v * cos(theta)
+            _k4_1 = v * sin(theta)
+            _k4_2 = omega
+            _k4_3 = a
+            x, y, theta, v = (
+                _s0 + _sixth * (_k1_0 + 2.0 * _k2_0 + 2.0 * _k3_0 + _k4_0),
+                _s1 + _sixth * (_k1_1 + 2.0 * _k2_1 + 2.0 * _k3_1 + _k4_1),
+                _s2 + _sixth * (_k1_2 + 2.0 * _k2_2 + 2.0 * _k3_2 + _k4_2),
+                _s3 + _sixth * (_k1_3 + 2.0 * _k2_3 + 2.0 * _k3_3 + _k4_3))
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                    and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1 and _lo3 <= v <= _hi3):
+                return (_last0, _last1, _last2, _last3), k
+            _last0, _last1, _last2, _last3 = x, y, theta, v
+        return (x, y, theta, v), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class Car2Rk4Body(Car2Rk4):
+    """Car2Rk4, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 4:
+            return False
+        x, y, theta, v = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._lo3 <= v <= self._hi3 and self._body.free(x, y, theta))
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -665,16 +766,10 @@ class Car2Rk4:
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
                     and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1 and _lo3 <= v <= _hi3
-                    and (_body is None or _body.free(x, y, theta))):
+                    and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2, _last3), k
             _last0, _last1, _last2, _last3 = x, y, theta, v
         return (x, y, theta, v), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 class UnicycleEuler:
@@ -682,7 +777,7 @@ class UnicycleEuler:
     omega' = alpha."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._lo0: float = lows[0]
         self._hi0: float = highs[0]
@@ -692,17 +787,6 @@ class UnicycleEuler:
         self._hi3: float = highs[3]
         self._lo4: float = lows[4]
         self._hi4: float = highs[4]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 5:
-            return False
-        x, y, theta, v, omega = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
-                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
-                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
-                and self._lo4 <= omega <= self._hi4
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -722,6 +806,64 @@ class UnicycleEuler:
             if out is not None:
                 out.append((x, y, theta, v, omega))
         return (x, y, theta, v, omega)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 5:
+            return False
+        x, y, theta, v, omega = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
+                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
+                and self._lo4 <= omega <= self._hi4)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, _lo0, _hi0, _lo1, _hi1, _lo3, _hi3, _lo4, _hi4 = (
+            self._dt, self._lo0, self._hi0, self._lo1, self._hi1, self._lo3, self._hi3,
+            self._lo4, self._hi4)
+        x, y, theta, v, omega = state
+        a, alpha = control[0], control[1]
+        _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
+        for k in range(kmax):
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = omega
+            _k1_3 = a
+            _k1_4 = alpha
+            x, y, theta, v, omega = (
+                x + _dt * _k1_0, y + _dt * _k1_1, theta + _dt * _k1_2, v + _dt * _k1_3,
+                omega + _dt * _k1_4)
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                    and omega - omega == 0.0 and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1
+                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4):
+                return (_last0, _last1, _last2, _last3, _last4), k
+            _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
+        return (x, y, theta, v, omega), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class UnicycleEulerBody(UnicycleEuler):
+    """UnicycleEuler, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 5:
+            return False
+        x, y, theta, v, omega = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
+                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
+                and self._lo4 <= omega <= self._hi4 and self._body.free(x, y, theta))
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -743,17 +885,10 @@ class UnicycleEuler:
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
                     and omega - omega == 0.0 and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1
-                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4
-                    and (_body is None or _body.free(x, y, theta))):
+                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4 and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2, _last3, _last4), k
             _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
         return (x, y, theta, v, omega), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 class UnicycleRk4:
@@ -761,7 +896,7 @@ class UnicycleRk4:
     omega' = alpha."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._half: float = dt / 2.0
         self._sixth: float = dt / 6.0
@@ -773,17 +908,6 @@ class UnicycleRk4:
         self._hi3: float = highs[3]
         self._lo4: float = lows[4]
         self._hi4: float = highs[4]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 5:
-            return False
-        x, y, theta, v, omega = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
-                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
-                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
-                and self._lo4 <= omega <= self._hi4
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -831,6 +955,92 @@ class UnicycleRk4:
             if out is not None:
                 out.append((x, y, theta, v, omega))
         return (x, y, theta, v, omega)
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 5:
+            return False
+        x, y, theta, v, omega = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
+                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
+                and self._lo4 <= omega <= self._hi4)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, _half, _sixth, _lo0, _hi0, _lo1, _hi1, _lo3, _hi3, _lo4, _hi4 = (
+            self._dt, self._half, self._sixth, self._lo0, self._hi0, self._lo1, self._hi1,
+            self._lo3, self._hi3, self._lo4, self._hi4)
+        x, y, theta, v, omega = state
+        a, alpha = control[0], control[1]
+        _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
+        for k in range(kmax):
+            _s0, _s1, _s2, _s3, _s4 = x, y, theta, v, omega
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = omega
+            _k1_3 = a
+            _k1_4 = alpha
+            x, y, theta, v, omega = (
+                _s0 + _half * _k1_0, _s1 + _half * _k1_1, _s2 + _half * _k1_2,
+                _s3 + _half * _k1_3, _s4 + _half * _k1_4)
+            _k2_0 = v * cos(theta)
+            _k2_1 = v * sin(theta)
+            _k2_2 = omega
+            _k2_3 = a
+            _k2_4 = alpha
+            x, y, theta, v, omega = (
+                _s0 + _half * _k2_0, _s1 + _half * _k2_1, _s2 + _half * _k2_2,
+                _s3 + _half * _k2_3, _s4 + _half * _k2_4)
+            _k3_0 = v * cos(theta)
+            _k3_1 = v * sin(theta)
+            _k3_2 = omega
+            _k3_3 = a
+            _k3_4 = alpha
+            x, y, theta, v, omega = (
+                _s0 + _dt * _k3_0, _s1 + _dt * _k3_1, _s2 + _dt * _k3_2, _s3 + _dt * _k3_3,
+                _s4 + _dt * _k3_4)
+            _k4_0 = v * cos(theta)
+            _k4_1 = v * sin(theta)
+            _k4_2 = omega
+            _k4_3 = a
+            _k4_4 = alpha
+            x, y, theta, v, omega = (
+                _s0 + _sixth * (_k1_0 + 2.0 * _k2_0 + 2.0 * _k3_0 + _k4_0),
+                _s1 + _sixth * (_k1_1 + 2.0 * _k2_1 + 2.0 * _k3_1 + _k4_1),
+                _s2 + _sixth * (_k1_2 + 2.0 * _k2_2 + 2.0 * _k3_2 + _k4_2),
+                _s3 + _sixth * (_k1_3 + 2.0 * _k2_3 + 2.0 * _k3_3 + _k4_3),
+                _s4 + _sixth * (_k1_4 + 2.0 * _k2_4 + 2.0 * _k3_4 + _k4_4))
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                    and omega - omega == 0.0 and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1
+                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4):
+                return (_last0, _last1, _last2, _last3, _last4), k
+            _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
+        return (x, y, theta, v, omega), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class UnicycleRk4Body(UnicycleRk4):
+    """UnicycleRk4, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 5:
+            return False
+        x, y, theta, v, omega = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
+                and omega - omega == 0.0 and self._lo0 <= x <= self._hi0
+                and self._lo1 <= y <= self._hi1 and self._lo3 <= v <= self._hi3
+                and self._lo4 <= omega <= self._hi4 and self._body.free(x, y, theta))
 
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
@@ -880,17 +1090,10 @@ class UnicycleRk4:
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and v - v == 0.0
                     and omega - omega == 0.0 and _lo0 <= x <= _hi0 and _lo1 <= y <= _hi1
-                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4
-                    and (_body is None or _body.free(x, y, theta))):
+                    and _lo3 <= v <= _hi3 and _lo4 <= omega <= _hi4 and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2, _last3, _last4), k
             _last0, _last1, _last2, _last3, _last4 = x, y, theta, v, omega
         return (x, y, theta, v, omega), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 class Car1Euler:
@@ -898,22 +1101,13 @@ class Car1Euler:
     tan(phi)."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self.L: float = constants[0]
         self._lo0: float = lows[0]
         self._hi0: float = highs[0]
         self._lo1: float = lows[1]
         self._hi1: float = highs[1]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 3:
-            return False
-        x, y, theta = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
-                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -930,6 +1124,55 @@ class Car1Euler:
                 out.append((x, y, theta))
         return (x, y, theta)
 
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 3:
+            return False
+        x, y, theta = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, L, _lo0, _hi0, _lo1, _hi1 = (
+            self._dt, self.L, self._lo0, self._hi0, self._lo1, self._hi1)
+        x, y, theta = state
+        v, phi = control[0], control[1]
+        _last0, _last1, _last2 = x, y, theta
+        for k in range(kmax):
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = (v / L) * tan(phi)
+            x, y, theta = x + _dt * _k1_0, y + _dt * _k1_1, theta + _dt * _k1_2
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and _lo0 <= x <= _hi0
+                    and _lo1 <= y <= _hi1):
+                return (_last0, _last1, _last2), k
+            _last0, _last1, _last2 = x, y, theta
+        return (x, y, theta), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class Car1EulerBody(Car1Euler):
+    """Car1Euler, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 3:
+            return False
+        x, y, theta = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._body.free(x, y, theta))
+
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
         _dt, L, _lo0, _hi0, _lo1, _hi1, _body = (
@@ -944,23 +1187,17 @@ class Car1Euler:
             x, y, theta = x + _dt * _k1_0, y + _dt * _k1_1, theta + _dt * _k1_2
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and _lo0 <= x <= _hi0
-                    and _lo1 <= y <= _hi1 and (_body is None or _body.free(x, y, theta))):
+                    and _lo1 <= y <= _hi1 and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2), k
             _last0, _last1, _last2 = x, y, theta
         return (x, y, theta), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 class Car1Rk4:
     """car1, rk4: x' = v * cos(theta); y' = v * sin(theta); theta' = (v / L) * tan(phi)."""
 
     def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
-                 highs: Sequence[float], body: Optional[BodyTest]) -> None:
+                 highs: Sequence[float], body: Any = None) -> None:
         self._dt: float = dt
         self._half: float = dt / 2.0
         self._sixth: float = dt / 6.0
@@ -969,15 +1206,6 @@ class Car1Rk4:
         self._hi0: float = highs[0]
         self._lo1: float = lows[1]
         self._hi1: float = highs[1]
-        self._body: Optional[BodyTest] = body
-
-    def valid(self, state: Sequence[float]) -> bool:
-        if len(state) != 3:
-            return False
-        x, y, theta = state
-        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
-                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
-                and (self._body is None or self._body.free(x, y, theta)))
 
     def slices(self, state: Sequence[float], control: Sequence[float], k: int,
                out: Optional[list[State]]) -> State:
@@ -1010,6 +1238,72 @@ class Car1Rk4:
                 out.append((x, y, theta))
         return (x, y, theta)
 
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 3:
+            return False
+        x, y, theta = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1)
+
+    def advance(self, state: Sequence[float], control: Sequence[float],
+                kmax: int) -> tuple[State, int]:
+        _dt, _half, _sixth, L, _lo0, _hi0, _lo1, _hi1 = (
+            self._dt, self._half, self._sixth, self.L, self._lo0, self._hi0, self._lo1,
+            self._hi1)
+        x, y, theta = state
+        v, phi = control[0], control[1]
+        _last0, _last1, _last2 = x, y, theta
+        for k in range(kmax):
+            _s0, _s1, _s2 = x, y, theta
+            _k1_0 = v * cos(theta)
+            _k1_1 = v * sin(theta)
+            _k1_2 = (v / L) * tan(phi)
+            x, y, theta = _s0 + _half * _k1_0, _s1 + _half * _k1_1, _s2 + _half * _k1_2
+            _k2_0 = v * cos(theta)
+            _k2_1 = v * sin(theta)
+            _k2_2 = (v / L) * tan(phi)
+            x, y, theta = _s0 + _half * _k2_0, _s1 + _half * _k2_1, _s2 + _half * _k2_2
+            _k3_0 = v * cos(theta)
+            _k3_1 = v * sin(theta)
+            _k3_2 = (v / L) * tan(phi)
+            x, y, theta = _s0 + _dt * _k3_0, _s1 + _dt * _k3_1, _s2 + _dt * _k3_2
+            _k4_0 = v * cos(theta)
+            _k4_1 = v * sin(theta)
+            _k4_2 = (v / L) * tan(phi)
+            x, y, theta = (
+                _s0 + _sixth * (_k1_0 + 2.0 * _k2_0 + 2.0 * _k3_0 + _k4_0),
+                _s1 + _sixth * (_k1_1 + 2.0 * _k2_1 + 2.0 * _k3_1 + _k4_1),
+                _s2 + _sixth * (_k1_2 + 2.0 * _k2_2 + 2.0 * _k3_2 + _k4_2))
+            theta = _rem(theta, TAU)
+            if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and _lo0 <= x <= _hi0
+                    and _lo1 <= y <= _hi1):
+                return (_last0, _last1, _last2), k
+            _last0, _last1, _last2 = x, y, theta
+        return (x, y, theta), kmax
+
+    def propagate_valid(self, state: Sequence[float],
+                        control: Sequence[Any]) -> Optional[State]:
+        k: int = control[-1]
+        end, done = self.advance(state, control, k)
+        return end if done == k else None
+
+
+class Car1Rk4Body(Car1Rk4):
+    """Car1Rk4, the body placed at (x, y, theta) free too."""
+
+    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],
+                 highs: Sequence[float], body: BodyTest) -> None:
+        super().__init__(dt, constants, lows, highs)
+        self._body: BodyTest = body
+
+    def valid(self, state: Sequence[float]) -> bool:
+        if len(state) != 3:
+            return False
+        x, y, theta = state
+        return (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0
+                and self._lo0 <= x <= self._hi0 and self._lo1 <= y <= self._hi1
+                and self._body.free(x, y, theta))
+
     def advance(self, state: Sequence[float], control: Sequence[float],
                 kmax: int) -> tuple[State, int]:
         _dt, _half, _sixth, L, _lo0, _hi0, _lo1, _hi1, _body = (
@@ -1041,16 +1335,10 @@ class Car1Rk4:
                 _s2 + _sixth * (_k1_2 + 2.0 * _k2_2 + 2.0 * _k3_2 + _k4_2))
             theta = _rem(theta, TAU)
             if not (x - x == 0.0 and y - y == 0.0 and theta - theta == 0.0 and _lo0 <= x <= _hi0
-                    and _lo1 <= y <= _hi1 and (_body is None or _body.free(x, y, theta))):
+                    and _lo1 <= y <= _hi1 and _body.free(x, y, theta)):
                 return (_last0, _last1, _last2), k
             _last0, _last1, _last2 = x, y, theta
         return (x, y, theta), kmax
-
-    def propagate_valid(self, state: Sequence[float],
-                        control: Sequence[Any]) -> Optional[State]:
-        k: int = control[-1]
-        end, done = self.advance(state, control, k)
-        return end if done == k else None
 
 
 METRICS: Final[dict[Any, Any]] = {
@@ -1070,49 +1358,99 @@ INTEGRATORS: Final[dict[Any, Any]] = {
      ('omega', '-g * cos(theta) + tau'),
      (True, False),
      ('g',),
-     'euler'): PendulumEuler,
+     'euler',
+     False): PendulumEuler,
     (('theta', 'omega'),
      ('tau',),
      ('omega', '-g * cos(theta) + tau'),
      (True, False),
      ('g',),
-     'rk4'): PendulumRk4,
+     'rk4',
+     False): PendulumRk4,
     (('x', 'y', 'theta', 'v'),
      ('omega', 'a'),
      ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a'),
      (False, False, True, False),
      (),
-     'euler'): Car2Euler,
+     'euler',
+     False): Car2Euler,
     (('x', 'y', 'theta', 'v'),
      ('omega', 'a'),
      ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a'),
      (False, False, True, False),
      (),
-     'rk4'): Car2Rk4,
+     'euler',
+     True): Car2EulerBody,
+    (('x', 'y', 'theta', 'v'),
+     ('omega', 'a'),
+     ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a'),
+     (False, False, True, False),
+     (),
+     'rk4',
+     False): Car2Rk4,
+    (('x', 'y', 'theta', 'v'),
+     ('omega', 'a'),
+     ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a'),
+     (False, False, True, False),
+     (),
+     'rk4',
+     True): Car2Rk4Body,
     (('x', 'y', 'theta', 'v', 'omega'),
      ('a', 'alpha'),
      ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a', 'alpha'),
      (False, False, True, False, False),
      (),
-     'euler'): UnicycleEuler,
+     'euler',
+     False): UnicycleEuler,
     (('x', 'y', 'theta', 'v', 'omega'),
      ('a', 'alpha'),
      ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a', 'alpha'),
      (False, False, True, False, False),
      (),
-     'rk4'): UnicycleRk4,
+     'euler',
+     True): UnicycleEulerBody,
+    (('x', 'y', 'theta', 'v', 'omega'),
+     ('a', 'alpha'),
+     ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a', 'alpha'),
+     (False, False, True, False, False),
+     (),
+     'rk4',
+     False): UnicycleRk4,
+    (('x', 'y', 'theta', 'v', 'omega'),
+     ('a', 'alpha'),
+     ('v * cos(theta)', 'v * sin(theta)', 'omega', 'a', 'alpha'),
+     (False, False, True, False, False),
+     (),
+     'rk4',
+     True): UnicycleRk4Body,
     (('x', 'y', 'theta'),
      ('v', 'phi'),
      ('v * cos(theta)', 'v * sin(theta)', '(v / L) * tan(phi)'),
      (False, False, True),
      ('L',),
-     'euler'): Car1Euler,
+     'euler',
+     False): Car1Euler,
     (('x', 'y', 'theta'),
      ('v', 'phi'),
      ('v * cos(theta)', 'v * sin(theta)', '(v / L) * tan(phi)'),
      (False, False, True),
      ('L',),
-     'rk4'): Car1Rk4,
+     'euler',
+     True): Car1EulerBody,
+    (('x', 'y', 'theta'),
+     ('v', 'phi'),
+     ('v * cos(theta)', 'v * sin(theta)', '(v / L) * tan(phi)'),
+     (False, False, True),
+     ('L',),
+     'rk4',
+     False): Car1Rk4,
+    (('x', 'y', 'theta'),
+     ('v', 'phi'),
+     ('v * cos(theta)', 'v * sin(theta)', '(v / L) * tan(phi)'),
+     (False, False, True),
+     ('L',),
+     'rk4',
+     True): Car1Rk4Body,
 }
 """Integrator classes by ``kernels.integrator_key`` of the dynamics and scheme."""
 

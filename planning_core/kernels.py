@@ -35,11 +35,12 @@ def metric_key(space: Any) -> tuple:
             tuple(indices for indices, _ in space.groups))
 
 
-def integrator_key(dynamics: Any, scheme: str) -> tuple:
+def integrator_key(dynamics: Any, scheme: str, body: bool) -> tuple:
     """What a generated integrator is made for: the names, rates and angles of the
-    dynamics, its parameters' names (not their values) and the scheme."""
+    dynamics, its parameters' names (not their values), the scheme, and whether it
+    tests a body."""
     return (dynamics.state_names, dynamics.control_names, dynamics.rates, dynamics.angles,
-            tuple(name for name, _ in dynamics.constants), scheme)
+            tuple(name for name, _ in dynamics.constants), scheme, body)
 
 
 def space_metric(space: Any) -> Any:
@@ -58,7 +59,7 @@ def integrator(system: Any, body: Any = None) -> Any:
     else ``integrators.ReferenceIntegrator``."""
     from planning_core.generated_kernels import INTEGRATORS
     dynamics, variables = system.dynamics, system.space.variables
-    found = INTEGRATORS.get(integrator_key(dynamics, system.scheme))
+    found = INTEGRATORS.get(integrator_key(dynamics, system.scheme, body is not None))
     if found is None:
         from planning_core.integrators import ReferenceIntegrator
         return ReferenceIntegrator(dynamics, system.scheme, float(system.dt),

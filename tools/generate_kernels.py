@@ -9,7 +9,8 @@ variables, metric groups or rates, or the integrators; the file is committed, an
 What is written, per registered family system: a metric class for its space, and one
 for the goal that names only its position variables (the groups' variables kept,
 as ``kinoplan.make_goal`` keeps them), spaces of the same shape sharing one; for a
-kinodynamic system, an integrator class per scheme. Each does the float operations
+kinodynamic system, an integrator class per scheme, and for one with a body a subclass
+that tests it too. Each does the float operations
 of its reference in the same order (``spaces.StateSpace``, the kd-tree's
 ``nearest.metric.SpaceMetric.bound``, ``integrators.ReferenceIntegrator``);
 ``planning_core.kernels`` finds them by :func:`~planning_core.kernels.metric_key`
@@ -254,28 +255,25 @@ def slice_lines(dynamics: Dynamics, scheme: str, pad: str) -> list[str]:
     return lines
 
 
-def _condition(system: KinodynamicFamily, prefix: str) -> list[str]:
+def _condition(system: KinodynamicFamily, prefix: str, body: bool) -> list[str]:
     """The valid-state test over the state names: every value finite, every non-angle
-    within its closed bounds, then the body free at (x, y, theta) when there is one."""
+    within its closed bounds, then (``body``) the body free at (x, y, theta)."""
     dynamics = system.dynamics
     names = dynamics.state_names
     tests = [f"{v} - {v} == 0.0" for v in names]
     tests += [f"{prefix}lo{i} <= {v} <= {prefix}hi{i}"
               for i, v in enumerate(names) if not dynamics.angles[i]]
-    if system.occupies == "body":
-        tests.append(f"({prefix}body is None or {prefix}body.free({', '.join(names[:3])}))")
-    return tests
+    return tests + [f"{prefix}body.free({', '.join(names[:3])})"] * body
 
 
-def _loads(system: KinodynamicFamily, steps: bool, bounds: bool) -> list[str]:
+def _loads(system: KinodynamicFamily, bounds: bool, body: bool) -> list[str]:
     """A method's first lines: the fields it reads per slice, as locals."""
     dynamics = system.dynamics
-    names = ["_dt", "_half", "_sixth"] if steps and system.scheme == "rk4" else ["_dt"] * steps
-    names += [name for name, _ in dynamics.constants] * steps
+    names = ["_dt", "_half", "_sixth"] if system.scheme == "rk4" else ["_dt"]
+    names += [name for name, _ in dynamics.constants]
     names += [f"_{side}{i}" for i in range(len(dynamics.state_names))
               if not dynamics.angles[i] for side in ("lo", "hi")] * bounds
-    if bounds and system.occupies == "body":
-        names.append("_body")
+    names += ["_body"] * body
     return _assign(names, [f"self.{name}" for name in names], "        ")
 
 
@@ -290,21 +288,45 @@ def _bind(dynamics: Dynamics) -> list[str]:
             *_assign(list(held), [f"control[{j}]" for j in range(len(held))], "        ")]
 
 
+def _valid_and_advance(system: KinodynamicFamily, body: bool) -> list[str]:
+    """The methods that test states: ``valid(state)`` and the fused loop ``advance``."""
+    dynamics = system.dynamics
+    names, n = dynamics.state_names, len(dynamics.state_names)
+    state, last = _names(names), _names([f"_last{i}" for i in range(n)])
+    return [
+        "    def valid(self, state: Sequence[float]) -> bool:",
+        f"        if len(state) != {n}:",
+        "            return False",
+        f"        {state} = state",
+        *_wrapped("        return (", _condition(system, "self._", body), " " * 16, ")"),
+        "",
+        "    def advance(self, state: Sequence[float], control: Sequence[float],",
+        "                kmax: int) -> tuple[State, int]:",
+        *_loads(system, True, body), *_bind(dynamics),
+        f"        {last} = {state}",
+        "        for k in range(kmax):",
+        *slice_lines(dynamics, system.scheme, "            "),
+        *_wrapped("            if not (", _condition(system, "_", body), " " * 20, "):"),
+        f"                return ({last}), k",
+        f"            {last} = {state}",
+        f"        return ({state}), kmax",
+    ]
+
+
 def integrator_class(name: str, system: KinodynamicFamily) -> list[str]:
-    """The source of the integrator class of ``system`` (its dynamics, its scheme)."""
+    """The source of the integrator class of ``system`` (its dynamics, its scheme),
+    whose valid states are finite and within the bounds."""
     dynamics = system.dynamics
     names, n = dynamics.state_names, len(dynamics.state_names)
     state = _names(names)
-    last = _names([f"_last{i}" for i in range(n)])
     bounded = [i for i in range(n) if not dynamics.angles[i]]
     rates = "; ".join(f"{v}' = {r}" for v, r in zip(names, dynamics.rates))
-    body = "BodyTest" if system.occupies == "body" else "None"
     return [
         f"class {name}:",
         *_docstring(f"{system.name}, {system.scheme}: {rates}."),
         "",
         "    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],",
-        f"                 highs: Sequence[float], body: Optional[{body}]) -> None:",
+        "                 highs: Sequence[float], body: Any = None) -> None:",
         "        self._dt: float = dt",
         *(["        self._half: float = dt / 2.0", "        self._sixth: float = dt / 6.0"]
           if system.scheme == "rk4" else []),
@@ -312,39 +334,38 @@ def integrator_class(name: str, system: KinodynamicFamily) -> list[str]:
           for j, (c, _) in enumerate(dynamics.constants)],
         *[f"        self._{side}{i}: float = {array}[{i}]" for i in bounded
           for side, array in (("lo", "lows"), ("hi", "highs"))],
-        f"        self._body: Optional[{body}] = body",
-        "",
-        "    def valid(self, state: Sequence[float]) -> bool:",
-        f"        if len(state) != {n}:",
-        "            return False",
-        f"        {state} = state",
-        *_wrapped("        return (", _condition(system, "self._"), "                ", ")"),
         "",
         "    def slices(self, state: Sequence[float], control: Sequence[float], k: int,",
         "               out: Optional[list[State]]) -> State:",
-        *_loads(system, True, False), *_bind(dynamics),
+        *_loads(system, False, False), *_bind(dynamics),
         "        for _ in range(k):",
         *slice_lines(dynamics, system.scheme, "            "),
         "            if out is not None:",
         f"                out.append(({state}))",
         f"        return ({state})",
         "",
-        "    def advance(self, state: Sequence[float], control: Sequence[float],",
-        "                kmax: int) -> tuple[State, int]:",
-        *_loads(system, True, True), *_bind(dynamics),
-        f"        {last} = {state}",
-        "        for k in range(kmax):",
-        *slice_lines(dynamics, system.scheme, "            "),
-        *_wrapped("            if not (", _condition(system, "_"), "                    ", "):"),
-        f"                return ({last}), k",
-        f"            {last} = {state}",
-        f"        return ({state}), kmax",
+        *_valid_and_advance(system, False),
         "",
         "    def propagate_valid(self, state: Sequence[float],",
         "                        control: Sequence[Any]) -> Optional[State]:",
         "        k: int = control[-1]",
         "        end, done = self.advance(state, control, k)",
         "        return end if done == k else None",
+    ]
+
+
+def body_class(name: str, base: str, system: KinodynamicFamily) -> list[str]:
+    """The source of ``base`` with the body test: free at (x, y, theta) too."""
+    return [
+        f"class {name}({base}):",
+        *_docstring(f"{base}, the body placed at (x, y, theta) free too."),
+        "",
+        "    def __init__(self, dt: float, constants: Sequence[float], lows: Sequence[float],",
+        "                 highs: Sequence[float], body: BodyTest) -> None:",
+        "        super().__init__(dt, constants, lows, highs)",
+        "        self._body: BodyTest = body",
+        "",
+        *_valid_and_advance(system, True),
     ]
 
 
@@ -372,7 +393,11 @@ def module_text() -> str:
             configured = type(system)(scheme=scheme)
             name = f"{system.name.capitalize()}{scheme.capitalize()}"
             lines += ["", "", *integrator_class(name, configured)]
-            integrators += _entry(integrator_key(configured.dynamics, scheme), name)
+            integrators += _entry(integrator_key(configured.dynamics, scheme, False), name)
+            if system.occupies == "body":
+                lines += ["", "", *body_class(f"{name}Body", name, configured)]
+                integrators += _entry(integrator_key(configured.dynamics, scheme, True),
+                                      f"{name}Body")
     lines += ["", "", "METRICS: Final[dict[Any, Any]] = {", *metrics, "}",
               '"""Metric classes by ``kernels.metric_key`` of the space."""',
               "INTEGRATORS: Final[dict[Any, Any]] = {", *integrators, "}",
