@@ -2,7 +2,8 @@
 # Set up by need, in a virtual environment .venv inside the checkout:
 #   ./make.sh            everything: the project with the validator's reportlab, the test and
 #                        benchmark tools, and OMPL's Python bindings where PyPI has a wheel
-#                        (OMPL is optional: the benchmarks and their tests skip it with a note)
+#                        (OMPL is optional: the benchmarks and their tests skip it with a note);
+#                        as root with apt-get, Debian's chromium, poppler-utils and qpdf (tests)
 #   ./make.sh validator  the project and reportlab only: what the validator's PDF needs
 # Both write the bytecode the launchers read into .build/pycache (rrt_startup/bytecode.py).
 # "all" also compiles the hot modules with mypyc into .build/compiled where a C compiler is
@@ -17,7 +18,7 @@ cd "$(dirname "$0")"
 case ${1:-all} in
     all) target=all ;;
     validator) target=validator ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "make.sh: unknown target '$1' (use: ./make.sh [all | validator])" >&2; exit 2 ;;
 esac
 PYTHON=${PYTHON:-python3}
@@ -59,14 +60,16 @@ sys.exit(tuple(int(p) for p in pip.__version__.split(".")[:2]) < (21, 3))' 2>/de
     fi
 }
 
-# The console scripts rrt-planner and rrt-validator in .venv/bin become links to ./run.sh
-# and ./rrt-validator, which start faster (-S) than pip's. Removed before every pip run, so
+# The console scripts rrt-planner, rrt-validator and rrt-grade in .venv/bin become links to
+# ./run.sh, ./rrt-validator and ./rrt-grade, which start faster (-S) than pip's and read
+# bytecode only from the checkout. Removed before every pip run, so
 # that pip never writes through them.
-unlink_scripts() { rm -f .venv/bin/rrt-planner .venv/bin/rrt-validator; }
+unlink_scripts() { rm -f .venv/bin/rrt-planner .venv/bin/rrt-validator .venv/bin/rrt-grade; }
 link_scripts() {
     unlink_scripts  # pip's own
     ln -s ../../run.sh .venv/bin/rrt-planner
     ln -s ../../rrt-validator .venv/bin/rrt-validator
+    ln -s ../../rrt-grade .venv/bin/rrt-grade
 }
 
 PIP=(.venv/bin/python -m pip install --disable-pip-version-check --no-input)
@@ -87,6 +90,10 @@ install() {
         step "installing Dask's distributed, for rrt-grade --scheduler (optional)"
         if ! "${PIP[@]}" -e ".[grade]" >>"$LOG" 2>&1; then
             step "note: distributed could not be installed (see $LOG); rrt-grade runs locally only"
+        fi
+        step "installing Planner Arena, to test that it reads runs.sqlite (optional)"
+        if ! "${PIP[@]}" -e ".[arena]" >>"$LOG" 2>&1; then
+            step "note: plannerarena could not be installed (see $LOG); its test will be skipped"
         fi
         step "installing mypy, the hot modules' compiler (optional)"
         if ! "${PIP[@]}" -e ".[compile]" >>"$LOG" 2>&1; then
@@ -142,6 +149,27 @@ sys.exit(main(sys.argv[2]))' "$PWD" "$folder" >>"$LOG" 2>&1; then
     fi
 }
 
+# Headless Chromium (the browser view's tests) and poppler-utils and qpdf (the strict PDF
+# readers of the PDF's tests), from Debian's packages: only what is missing, only where
+# apt-get is and we are root; elsewhere one line says those tests will skip.
+install_test_tools() {
+    local missing=()
+    command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 \
+        || missing+=(chromium)
+    command -v pdftoppm >/dev/null 2>&1 || missing+=(poppler-utils)
+    command -v qpdf >/dev/null 2>&1 || missing+=(qpdf)
+    [ ${#missing[@]} -eq 0 ] && return 0
+    if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null 2>&1; then
+        step "note: ${missing[*]} not installed (apt-get as root installs them); the browser view's and strict PDF tests will skip"
+        return 0
+    fi
+    step "installing ${missing[*]} (Debian's packages: the view's and the PDF's tests)"
+    if ! { apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y \
+            --no-install-recommends "${missing[@]}"; } >>"$LOG" 2>&1; then
+        step "note: apt-get could not install ${missing[*]} (see $LOG); those tests will skip"
+    fi
+}
+
 # .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.
 stamp=.venv/.installed
 [ "$target" = validator ] && stamp=.venv/.installed-validator
@@ -149,5 +177,6 @@ if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
     install
 fi
 [ "$target" = all ] && compile_hot_modules
+[ "$target" = all ] && install_test_tools
 compile_bytecode
 exit 0

@@ -1,5 +1,6 @@
 """Benchmarks: a seeded problem suite, a harness that runs planners x vehicles x
-problems x seeds in worker processes, and reports (CSV, Markdown, PDF, OMPL logs).
+problems x seeds in worker processes, and reports (CSV, Markdown, HTML with SVG plots,
+PDF, OMPL logs, OMPL's database layout).
 
     python -m benchmarks --preset quick      # regenerate the suite, run, report
 

@@ -8,14 +8,15 @@
                          [--scheduler tcp://HOST:PORT] [--rerun]
 
 Writes into ``--out`` (default ``benchmarks/results/<preset>``): ``runs.csv``
-(one row per run), ``report.md`` (tables), ``plots.pdf`` and ``ompl-logs/``
-(OMPL's benchmark log format, for ompl_benchmark_statistics.py and Planner
-Arena), ``runs.sqlite`` (every run as it finishes, in OMPL's database layout: a rerun
-of the same command keeps the runs stored there unless ``--rerun``; see
-``benchmarks/store.py``) and ``meta.json``. Progress goes to stderr; the path of the report is
-the only line on stdout. The ``family*`` presets (``benchmarks/family.py``) run the
-kinoplan problems of ``benchmarks/problems/family/`` and write their own report
-(``benchmarks/family_report.py``; no plots).
+(one row per run), ``report.md`` (tables), ``report.html`` (the tables and the plots as
+inline SVG), ``plots.pdf`` (the same plots), ``ompl-logs/`` (OMPL's benchmark log format,
+for ompl_benchmark_statistics.py), ``runs.sqlite`` (every run as it finishes, in OMPL's
+database layout, which Planner Arena opens: a rerun of the same command keeps the runs
+stored there unless ``--rerun``; see ``benchmarks/store.py``) and ``meta.json``. Progress
+goes to stderr; the path of the report is the only line on stdout. The ``family*``
+presets (``benchmarks/family.py``) run the kinoplan problems of
+``benchmarks/problems/family/`` and write their own report
+(``benchmarks/family_report.py``).
 
 Ctrl-C or SIGTERM stops within a second: ``runs.csv`` (written row by row as
 runs finish) keeps the finished runs, and the report is made from them (without
@@ -43,13 +44,14 @@ from pathlib import Path
 
 from benchmarks import catalog, family, generator, presets
 from benchmarks.family_report import markdown_report as family_markdown_report
+from benchmarks.html_report import html_report
 from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_on_sigterm,
                                 run_all)
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import CsvAppender, read_csv, write_csv
 from benchmarks.shortest_path import shortest_lengths
-from planning_core.cli_args import EXIT_USAGE, OneLineErrorParser
+from cli_common import EXIT_USAGE, OneLineErrorParser
 from planning_core.vehicles import Vehicle
 
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
@@ -81,7 +83,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--out", type=Path, help="output directory "
                         "(default: benchmarks/results/<preset>)")
     parser.add_argument("--no-ompl", action="store_true", help="leave OMPL's planners out")
-    parser.add_argument("--no-plots", action="store_true", help="skip the PDF")
+    parser.add_argument("--no-plots", action="store_true",
+                        help="skip the plots (plots.pdf and report.html's SVG)")
     parser.add_argument("--no-generate", action="store_true",
                         help="use the problem files as they are (no regeneration)")
     parser.add_argument("--report-only", action="store_true",
@@ -111,13 +114,20 @@ def _ompl_version() -> str:
         return "not installed"
 
 
-def _git_commit() -> str:
+def _git(*args: str) -> str:
     try:
-        done = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=catalog.ROOT,
-                              capture_output=True, text=True, timeout=5)
-        return done.stdout.strip() or "unknown"
+        return subprocess.run(["git", *args], cwd=catalog.ROOT, capture_output=True,
+                              text=True, timeout=5).stdout.strip()
     except (OSError, subprocess.SubprocessError):
-        return "unknown"
+        return ""
+
+
+def _git_commit() -> str:
+    """The checkout's commit (40 hex digits), and whether tracked files differ from it."""
+    commit = _git("rev-parse", "HEAD") or "unknown"
+    if commit != "unknown" and _git("status", "--porcelain", "--untracked-files=no"):
+        commit += " (with uncommitted changes)"
+    return commit
 
 
 def _cpu_model() -> str:
@@ -163,9 +173,10 @@ def build_family_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunS
 
 
 def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:
-    """runs.csv, report.md, meta.json, the OMPL logs and (``plots``) plots.pdf from
-    ``rows``; with ``yardstick`` the point vehicle's shortest paths (shortest.csv).
-    A family preset's report is the family's (no yardstick, no plots)."""
+    """runs.csv, report.md, report.html, meta.json, the OMPL logs and (``plots``) the
+    plots, in plots.pdf and in report.html, from ``rows``; with ``yardstick`` the point
+    vehicle's shortest paths (shortest.csv). A family preset's report is the family's
+    (no yardstick)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
     family_preset = family.FAMILY_PRESETS.get(meta.get("preset", ""))
@@ -175,20 +186,31 @@ def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = Tr
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
             f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"
-    report.write_text((markdown_report(rows, meta, shortest=shortest) if family_preset is None
-                       else family_markdown_report(rows, meta, family_preset)) + "\n")
+    markdown = (markdown_report(rows, meta, shortest=shortest) if family_preset is None
+                else family_markdown_report(rows, meta, family_preset))
+    report.write_text(markdown + "\n")
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     header = LogHeader(hostname=meta.get("host", "unknown"), date=meta.get("date", ""),
                        cpu_info=meta.get("cpu", ""),
                        total_seconds=float(meta.get("wall seconds", 0.0) or 0.0))
     write_logs(rows, out / "ompl-logs", header)
-    if plots and family_preset is None:
-        try:
-            from benchmarks.plots import write_pdf
-            write_pdf(rows, out / "plots.pdf", title=f"{meta.get('preset', '')} run: ")
-        except ImportError as error:
-            sys.stderr.write(f"benchmarks: no plots ({error}); pip install matplotlib\n")
+    _write_html(rows, out, markdown, plots)
     return report
+
+
+def _write_html(rows, out: Path, markdown: str, plots: bool) -> None:
+    """report.html; with ``plots``, the plots in it and in plots.pdf (else no plots.pdf:
+    an earlier run's would not be these rows')."""
+    plotted, note = [], "Plots left out (--no-plots, or the run was stopped)."
+    (out / "plots.pdf").unlink(missing_ok=True)
+    if plots:
+        try:
+            from benchmarks.plots import render
+            plotted = render(rows, out / "plots.pdf")
+        except ImportError as error:
+            note = f"No plots: {error} (pip install matplotlib)."
+            sys.stderr.write(f"benchmarks: no plots ({error}); pip install matplotlib\n")
+    (out / "report.html").write_text(html_report(markdown, plotted, note))
 
 
 def _check_args(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
@@ -347,8 +369,7 @@ def main(argv: list[str] | None = None) -> int:
     if ompl_note:
         meta["note"] = ompl_note
     if stop is not None:
-        for stale in ("shortest.csv", "plots.pdf"):  # an earlier run's, not these rows'
-            (out / stale).unlink(missing_ok=True)
+        (out / "shortest.csv").unlink(missing_ok=True)  # an earlier run's, not these rows'
         meta["interrupted"] = (f"by {signal.Signals(stop.signum).name} after {len(rows)} of "
                                f"{len(specs)} runs: the report covers the finished ones")
         sys.stderr.write(f"benchmarks: {meta['interrupted']}\n")

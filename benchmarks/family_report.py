@@ -17,8 +17,9 @@ from typing import Sequence
 
 from benchmarks.catalog import GEOMETRIC_SYSTEMS, OMPL_PREFIX, label
 from benchmarks.family import FamilyPreset, table_planners, table_problems
-from benchmarks.report import (Spread, _fmt, _pm, _ratio, failures_table, group,
-                               markdown_table, median_ratio, summarize)
+from benchmarks.report import (MIN_RUNS, TARGETS_NOTE, Spread, _fmt, _pm, _ratio,
+                               failures_table, fewest_runs, group, markdown_table,
+                               median_ratio, not_judged, summarize)
 from benchmarks.rows import RunRow
 
 REFERENCE = OMPL_PREFIX + "rrt"
@@ -67,9 +68,14 @@ def _median_time(rows: Sequence[RunRow]) -> float:
     return statistics.median(r.time_seconds for r in rows) if rows else math.nan
 
 
-def targets_table(rows: Sequence[RunRow]) -> list[str]:
+def targets_table(rows: Sequence[RunRow], min_runs: int = MIN_RUNS) -> list[str]:
     """Issue 14's and 15's measurable targets, judged on this run's rows (a speed
-    target is met only when every run of the planner on that problem was solved)."""
+    target is met only when every run of the planner on that problem was solved);
+    one measured with fewer than ``min_runs`` runs of a planner is not judged."""
+    def judged(target: str, measured: str, met: bool, *runs: Sequence[RunRow]):
+        fewest = fewest_runs(*runs)
+        return ((target, measured, _verdict(met)) if fewest >= min_runs
+                else (target, not_judged(fewest, min_runs), "–"))
     body = []
     by_key = group(rows, "problem", "planner")
     problems = sorted({r.problem for r in rows})
@@ -85,27 +91,29 @@ def targets_table(rows: Sequence[RunRow]) -> list[str]:
             ratio, solved = median_ratio(runs, reference), sum(r.solved for r in runs)
             measured = _ratio(ratio) + ("" if solved == len(runs)
                                         else f" ({solved}/{len(runs)} solved)")
-            body.append((f"{problem}: {planner} median time ≤ {SPEED_FACTOR}× OMPL RRT's",
-                         measured, _verdict(ratio <= SPEED_FACTOR and solved == len(runs))))
+            body.append(judged(f"{problem}: {planner} median time ≤ {SPEED_FACTOR}× OMPL "
+                               "RRT's", measured, ratio <= SPEED_FACTOR and solved == len(runs),
+                               runs, reference))
     pendulum = [rows for (q, p), rows in by_key.items()
                 if q == "pendulum-t3" and not p.startswith(OMPL_PREFIX)]
     if pendulum:
         best = min(_median_time(r) for r in pendulum)
-        body.append((f"pendulum-t3: best planner median ≤ {PENDULUM_FACTOR:g}× "
-                     f"{PENDULUM_PUBLISHED_SECONDS} s (seed, C++)", f"{best:.4g} s",
-                     _verdict(best <= PENDULUM_FACTOR * PENDULUM_PUBLISHED_SECONDS)))
+        body.append(judged(f"pendulum-t3: best planner median ≤ {PENDULUM_FACTOR:g}× "
+                           f"{PENDULUM_PUBLISHED_SECONDS} s (seed, C++)", f"{best:.4g} s",
+                           best <= PENDULUM_FACTOR * PENDULUM_PUBLISHED_SECONDS, *pendulum))
     for (problem, planner), runs in sorted(by_key.items()):
         if planner == "blossom" and problem.startswith("car1-scene"):
             median = _median_time(runs)
-            body.append((f"{problem}: blossom b = 5 median < {BLOSSOM_SECONDS:g} s",
-                         f"{median:.3g} s", _verdict(median < BLOSSOM_SECONDS)))
-    body += _prmstar_targets(by_key, problems)
+            body.append(judged(f"{problem}: blossom b = 5 median < {BLOSSOM_SECONDS:g} s",
+                               f"{median:.3g} s", median < BLOSSOM_SECONDS, runs))
+    body += [judged(*target) for target in _prmstar_targets(by_key, problems)]
     if not body:
         return ["No targets to judge in this run (OMPL's RRT or the planners left out)."]
     return markdown_table(("Target", "Measured", "Met"), body, "lrc")
 
 
-def _prmstar_targets(by_key, problems) -> list[tuple[str, str, str]]:
+def _prmstar_targets(by_key, problems) -> list[tuple]:
+    """(target, measured, met, prmstar's runs) per problem prmstar solved."""
     body = []
     for problem in problems:
         runs = by_key.get((problem, "prmstar"), [])
@@ -115,8 +123,8 @@ def _prmstar_targets(by_key, problems) -> list[tuple[str, str, str]]:
         if lengths and every:
             ratio = statistics.median(lengths) / min(every)
             body.append((f"{problem}: prmstar median path ≤ {PRMSTAR_PATH_FACTOR}× the "
-                         "shortest of the run", _ratio(ratio),
-                         _verdict(ratio <= PRMSTAR_PATH_FACTOR)))
+                         "shortest of the run", _ratio(ratio), ratio <= PRMSTAR_PATH_FACTOR,
+                         runs))
     return body
 
 
@@ -153,7 +161,8 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
             "OMPL RRT's (control RRT for kinodynamic systems, geometric for arm2 and "
             "rigid2), Python callbacks, same problems and seeds. A planner marked "
             f"\"{NOT_AVAILABLE}\" does not plan for that system (yet).", ""]
-    out += ["## Targets (issues 14 and 15)", ""] + targets_table(rows) + [""]
+    out += ["## Targets (issues 14 and 15)", "", TARGETS_NOTE, ""] + targets_table(rows)
+    out += [""]
     for table in preset.tables:
         out += [f"## {table.title}", ""]
         planners = table_planners(table, [])

@@ -33,7 +33,7 @@ from typing import IO, Callable, Iterable, Iterator
 from benchmarks.catalog import ROOT, PlannerChoice
 from benchmarks.generator import family_of, problem_id
 from benchmarks.rows import RunRow, RunStatus
-from planning_core.cli_args import is_kinoplan, parse_any_problem
+from cli_common import is_kinoplan, parse_any_problem
 from planning_core.vehicles import Vehicle
 
 LAUNCHER = Path(__file__).resolve().parent / "launch.py"

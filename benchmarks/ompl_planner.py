@@ -27,10 +27,9 @@ try:
 except ModuleNotFoundError:  # run as a script from a checkout that is not installed
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from benchmarks import ompl_adapters, ompl_family
-from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    is_kinoplan, parse_any_problem, positive_float,
-                                    read_problem_from_stdin, reject_vehicle_flags,
-                                    vehicle_from_flags)
+from cli_common import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags, is_kinoplan,
+                        parse_any_problem, positive_float, read_problem_from_stdin,
+                        reject_vehicle_flags, vehicle_from_flags)
 from planning_core.plan_text import format_plan
 
 EXIT_SOLVED = 0

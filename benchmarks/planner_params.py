@@ -11,7 +11,7 @@ import dataclasses
 import functools
 import sys
 
-from planning_core.cli_args import EXIT_USAGE, say
+from cli_common import EXIT_USAGE, say
 
 
 def _overrides(argv: list[str]) -> tuple[dict[str, str], list[str]]:

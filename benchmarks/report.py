@@ -11,7 +11,8 @@ Conventions (said again in the report's header):
   (geometric for the point vehicle, control for the spaceships), on the same
   problems and seeds: below 1 means faster than OMPL.
 * Targets are the data of ``benchmarks/targets.py``; a target this run has no
-  runs to judge is left out of the table.
+  runs to judge is left out of the table, and one measured with fewer than
+  ``MIN_RUNS`` runs of a planner on a problem is listed as not judged.
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, PathLengthVsPlanner,
                                 PlannerVsPlanner, SpeedVsReference, SuccessWithin, Target)
 from planning_core.vehicles import Vehicle
 
+MIN_RUNS = 5
+"""Runs (seeds) of each planner on each problem a target needs before the report judges it."""
 VEHICLE_ORDER = ("point", "spaceship", "left")
 VEHICLE_TITLES = {"point": "Point vehicle", "spaceship": "Spaceship (-grad)",
                   "left": "Left-only spaceship (-grad -left)"}
@@ -128,8 +131,11 @@ def _fmt(value: float | None, digits: int = 3) -> str:
 
 
 def _pm(spread: Spread, digits: int = 3) -> str:
+    """Mean ± standard deviation; one value alone (one run has no spread)."""
     if spread.count == 0:
         return "–"
+    if spread.count == 1:
+        return _fmt(spread.mean, digits)
     return f"{_fmt(spread.mean, digits)} ± {_fmt(spread.std, digits)}"
 
 
@@ -146,6 +152,9 @@ def markdown_table(header: Sequence[str], body: Iterable[Sequence[str]],
                     colalign=[names[a] for a in align], disable_numparse=True)
     return text.splitlines()
 
+
+TARGETS_NOTE = (f"A target is judged only on at least {MIN_RUNS} runs (seeds) of each planner "
+                "on each problem it compares; with fewer it is listed as not judged.")
 
 SUMMARY_HEADER = ("Planner", "Success %", "Time (s)", "Path length", "Tree nodes",
                   "Median time (s)", "p90 time (s)", "Process median (s)",
@@ -204,6 +213,19 @@ class TargetCheck:
     target: str
     met: bool | None      # None: this run's data cannot decide it (a zero median)
     detail: str
+    runs: int = 0
+    """The fewest runs of one planner on one problem among those judged."""
+
+
+def fewest_runs(*runs: Sequence[RunRow]) -> int:
+    """The fewest runs any planner had on any problem in ``runs`` (0 if none)."""
+    counts = [len(same) for rows in runs for same in group(rows, "planner", "problem").values()]
+    return min(counts, default=0)
+
+
+def not_judged(runs: int, min_runs: int = MIN_RUNS) -> str:
+    """What the targets table says of a target measured with too few runs."""
+    return f"not judged: {runs} run{'s' if runs != 1 else ''} (need {min_runs})"
 
 
 def check_targets(rows: Sequence[RunRow], shortest: Mapping[str, float] | None = None,
@@ -279,7 +301,8 @@ def _judge_success(target: SuccessWithin, rows: Sequence[RunRow],
         checks.append(TargetCheck(
             f"{target.vehicle}: {planner} solves 100% within {target.seconds:g} s up to "
             f"{target.max_size}x{target.max_size}", not misses,
-            f"{ok}/{total} runs" + (f"; short on {', '.join(misses)}" if misses else "")))
+            f"{ok}/{total} runs" + (f"; short on {', '.join(misses)}" if misses else ""),
+            fewest_runs(runs)))
     return checks
 
 
@@ -305,7 +328,7 @@ def _judge_speed(target: SpeedVsReference, rows: Sequence[RunRow],
         checks.append(TargetCheck(
             f"{target.vehicle}: {planner} median {what} time {where} {bound}",
             ratio <= target.factor if math.isfinite(ratio) else None,
-            f"ratio {_ratio(ratio)}"))
+            f"ratio {_ratio(ratio)}", fewest_runs(runs, reference)))
     return checks
 
 
@@ -313,8 +336,9 @@ def _judge_planner_vs_planner(target: PlannerVsPlanner, rows: Sequence[RunRow],
                               shortest: Mapping[str, float] | None) -> list[TargetCheck]:
     """One row, if the baseline and one of the planners share a problem and seed."""
     baseline = _ours(rows, target.vehicle, target.baseline, target.family)
-    ratios = {planner: median_ratio(_ours(rows, target.vehicle, planner, target.family),
-                                    baseline) for planner in target.planners}
+    compared = {planner: _ours(rows, target.vehicle, planner, target.family)
+                for planner in target.planners}
+    ratios = {planner: median_ratio(runs, baseline) for planner, runs in compared.items()}
     ratios = {planner: ratio for planner, ratio in ratios.items() if math.isfinite(ratio)}
     if not baseline or not ratios:
         return []
@@ -327,14 +351,16 @@ def _judge_planner_vs_planner(target: PlannerVsPlanner, rows: Sequence[RunRow],
     return [TargetCheck(
         f"{target.vehicle}: {' or '.join(target.planners)} median planning time on "
         f"{target.family} problems {bound}",
-        best < target.factor if target.strict else best <= target.factor, detail)]
+        best < target.factor if target.strict else best <= target.factor, detail,
+        fewest_runs(baseline, *(compared[planner] for planner in ratios)))]
 
 
 def _judge_path_length(target: PathLengthVsPlanner, rows: Sequence[RunRow],
                        shortest: Mapping[str, float] | None) -> list[TargetCheck]:
     """One row, if both planners solved a problem."""
     baseline = _ours(rows, target.vehicle, target.baseline)
-    ratios = path_length_ratios(_ours(rows, target.vehicle, target.planner), baseline)
+    ours = _ours(rows, target.vehicle, target.planner)
+    ratios = path_length_ratios(ours, baseline)
     if not ratios:
         return []
     shorter = f"{(1 - target.factor) * 100:g}% shorter"
@@ -349,7 +375,7 @@ def _judge_path_length(target: PathLengthVsPlanner, rows: Sequence[RunRow],
     return [TargetCheck(
         f"{target.vehicle}: {target.planner} paths at least {shorter} than our "
         f"{target.baseline}'s (mean over problems of the median-length ratio)",
-        mean_ratio <= target.factor, detail)]
+        mean_ratio <= target.factor, detail, fewest_runs(ours, baseline))]
 
 
 def _count_within(ratios: Iterable[float], factor: float) -> int:
@@ -375,11 +401,17 @@ def _median_path_lengths(runs: Sequence[RunRow]) -> dict[str, float]:
             for (problem,), solved in lengths.items()}
 
 
-def targets_table(rows: Sequence[RunRow],
-                  shortest: Mapping[str, float] | None = None) -> list[str]:
+def targets_table(rows: Sequence[RunRow], shortest: Mapping[str, float] | None = None,
+                  min_runs: int = MIN_RUNS) -> list[str]:
+    """The targets this run has runs for; those with fewer than ``min_runs`` runs of a
+    planner on a problem are listed as not judged."""
     marks = {True: "yes", False: "**no**", None: "n/a"}
-    body = [(check.target, marks[check.met], check.detail)
+    body = [(check.target, marks[check.met], check.detail) if check.runs >= min_runs
+            else (check.target, "–", not_judged(check.runs, min_runs))
             for check in check_targets(rows, shortest)]
+    if not body:
+        return ["No target has runs to judge in this run (OMPL's RRT or the planners left "
+                "out, or maps too small)."]
     return markdown_table(("Target", "Met", "Measured"), body, "lcl")
 
 
@@ -429,7 +461,7 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: b
             "problems and seeds (below 1 is faster); \"process\" = wall time of the whole "
             "planner process. A solution the validator rejects counts as unsolved.", ""]
     vehicles = [v for v in VEHICLE_ORDER if any(r.vehicle == v for r in rows)]
-    out += ["## Targets", ""] + targets_table(rows, shortest) + [""]
+    out += ["## Targets", "", TARGETS_NOTE, ""] + targets_table(rows, shortest) + [""]
     for vehicle in vehicles:
         problems = {r.problem for r in rows if r.vehicle == vehicle}
         seeds = {r.seed for r in rows if r.vehicle == vehicle}

@@ -1,14 +1,16 @@
 """The resumable SQLite store of benchmark runs, in OMPL's benchmark database layout.
 
 The tables are those ``ompl_benchmark_statistics`` makes from OMPL's logs (so Planner
-Arena reads the file): ``experiments`` (one per problem and vehicle, as in
+Arena's loader reads the file): ``experiments`` (one per problem and vehicle, as in
 ``ompl_log``), ``plannerConfigs`` (one per planner label and settings), ``enums``
-(the status names) and ``runs``, whose columns are OMPL's run properties (``time``,
+(the status names), ``runs``, whose columns are OMPL's run properties (``time``,
 ``solved``, ``memory``, ...) followed by every field of a :class:`RunRow` not among them
-(``harness_status`` for its status text). A row is written, in its own transaction, as
-its run finishes; a run is known by problem, vehicle, planner, seed and time limit.
-The store remembers what its runs were made with (:func:`code_fingerprint`: the
-source of our packages and ``--strict``); opened with anything else, it starts afresh.
+(``harness_status`` and ``harness_planner`` for the fields whose names OMPL's loader
+gives other values), and ``progress`` (empty: no planner reports progress). A row is
+written, in its own transaction, as its run finishes; a run is known by problem,
+vehicle, planner, seed and time limit. The store remembers what its runs were made
+with (:func:`code_fingerprint`: the source of our packages and ``--strict``); opened
+with anything else, or holding another layout of the tables, it starts afresh.
 """
 
 from __future__ import annotations
@@ -25,11 +27,12 @@ from benchmarks.generator import problem_id
 from benchmarks.harness import RunSpec
 from benchmarks.ompl_log import LIBRARY, PROPERTIES, STATUS_NAMES, VERSION, experiment_name
 from benchmarks.rows import FIELD_NAMES, RunRow
-from planning_core.cli_args import parse_any_problem
+from cli_common import parse_any_problem
 
 DB_NAME = "runs.sqlite"
-_RENAMED = {"status": "harness_status"}
-"""RunRow fields whose name OMPL uses for another value."""
+_RENAMED = {"status": "harness_status", "planner": "harness_planner"}
+"""RunRow fields whose name OMPL uses for another value (its loader names the planner
+configuration's label ``planner``)."""
 _OMPL_COLUMNS = tuple((name.replace(" ", "_"), kind, get) for name, kind, get in PROPERTIES)
 _SQL_TYPES = {"bool": "BOOLEAN", "int": "INTEGER", "float": "REAL", "str": "TEXT"}
 _SAME = {"process_time": "process_seconds", "solved": "solved", "correct_solution": "valid",
@@ -40,6 +43,8 @@ _EXTRA_COLUMNS = tuple(
     (_RENAMED.get(field.name, field.name), _SQL_TYPES[field.type.split(" ")[0]], field.name)
     for field in dataclasses.fields(RunRow) if field.name not in _SAME.values())
 _KEY = ("problem", "vehicle", "planner", "seed", "time_limit")
+_KEY_COLUMNS = tuple(_RENAMED.get(name, name) for name in _KEY)
+_RUN_TABLES = ("progress", "runs", "plannerConfigs", "experiments")
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS experiments
@@ -55,10 +60,15 @@ CREATE TABLE IF NOT EXISTS runs
     {", ".join(f'"{name}" {kind}' for name, kind, _ in _OMPL_COLUMNS + _EXTRA_COLUMNS)},
     FOREIGN KEY (experimentid) REFERENCES experiments(id) ON DELETE CASCADE,
     FOREIGN KEY (plannerid) REFERENCES plannerConfigs(id) ON DELETE CASCADE);
-CREATE UNIQUE INDEX IF NOT EXISTS runs_key ON runs ({", ".join(_KEY)});
+CREATE UNIQUE INDEX IF NOT EXISTS runs_key ON runs ({", ".join(_KEY_COLUMNS)});
+CREATE TABLE IF NOT EXISTS progress
+    (runid INTEGER, time REAL, PRIMARY KEY (runid, time),
+    FOREIGN KEY (runid) REFERENCES runs(id) ON DELETE CASCADE);
 CREATE TABLE IF NOT EXISTS harness (name TEXT PRIMARY KEY, value TEXT);
 """
-PACKAGES = ("planning_core", "rrt_cli", "validator", "benchmarks")
+_RUNS_COLUMNS = ("id", "experimentid", "plannerid",
+                 *(name for name, _, _ in _OMPL_COLUMNS + _EXTRA_COLUMNS))
+PACKAGES = ("planning_core", "cli_common", "rrt_cli", "validator", "benchmarks")
 """Whose source a stored run's result depends on."""
 
 
@@ -82,6 +92,9 @@ class RunStore:
         self.db = sqlite3.connect(self.path, timeout=30)
         self.db.execute("PRAGMA FOREIGN_KEYS = ON")
         with self.db:
+            if self._columns("runs") not in ([], list(_RUNS_COLUMNS)):  # another layout
+                for table in _RUN_TABLES:
+                    self.db.execute(f"DROP TABLE IF EXISTS {table}")
             self.db.executescript(_SCHEMA)
             self.db.executemany("INSERT OR IGNORE INTO enums VALUES (?, ?, ?)",
                                 [("status", value, name)
@@ -96,10 +109,13 @@ class RunStore:
     def __exit__(self, *exc_info) -> None:
         self.close()
 
+    def _columns(self, table: str) -> list[str]:
+        return [found[1] for found in self.db.execute(f"PRAGMA table_info({table})")]
+
     def clear(self) -> None:
         """Forget every run (``--rerun``)."""
         with self.db:
-            for table in ("runs", "plannerConfigs", "experiments"):
+            for table in _RUN_TABLES:
                 self.db.execute(f"DELETE FROM {table}")
 
     def made_with(self, fingerprint: str) -> bool:
@@ -129,8 +145,8 @@ class RunStore:
         with self.db:
             experiment = self._experiment(row)
             planner = self._planner(row)
-            self.db.execute("DELETE FROM runs WHERE " + " AND ".join(f"{k} = ?" for k in _KEY),
-                            key_of(row))
+            self.db.execute("DELETE FROM runs WHERE "
+                            + " AND ".join(f"{k} = ?" for k in _KEY_COLUMNS), key_of(row))
             values = [get(row) for _, _, get in _OMPL_COLUMNS] + [
                 getattr(row, field) for _, _, field in _EXTRA_COLUMNS]
             self.db.execute(

@@ -1,9 +1,11 @@
 """``rrt-grade``: grade a class of submissions (or a sweep) through the validator.
 
 Library first: :func:`grading.grade.grade` takes a :class:`grading.config.GradeConfig`
-and returns the finished rows; ``grading/cli.py`` is a thin command line over it.
+(its :class:`grading.rubric.Rubric` says what is graded and how it is scored) and returns
+the finished rows; ``grading/cli.py`` is a thin command line over it.
 """
 
-from grading.config import GradeConfig, Limits, ScoreRule
+from grading.config import GradeConfig, Limits
+from grading.rubric import Rubric
 
-__all__ = ["GradeConfig", "Limits", "ScoreRule"]
+__all__ = ["GradeConfig", "Limits", "Rubric"]

@@ -1,17 +1,12 @@
-"""What a grading run is asked to do: folders, modes, limits, the score rule."""
+"""What a grading run is asked to do: folders, the rubric, limits."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from planning_core.vehicles import Vehicle
-
-# The course's modes: how each reaches run.sh, and which vehicle the validator checks.
-MODE_FLAGS: dict[str, tuple[str, ...]] = {"point": (), "grad": ("-grad",),
-                                          "left": ("-grad", "-left")}
-MODE_VEHICLES: dict[str, Vehicle] = {"point": Vehicle.POINT, "grad": Vehicle.SPACESHIP,
-                                     "left": Vehicle.LEFT_SPACESHIP}
+from grading.rubric import (KINOPLAN, MODE_FLAGS, MODE_VEHICLES,  # noqa: F401
+                            PROBLEM_SUFFIXES, Item, Rubric)
 
 
 @dataclass(frozen=True)
@@ -29,35 +24,14 @@ class Limits:
 
 
 @dataclass(frozen=True)
-class ScoreRule:
-    """score = scale x (weighted valid runs) / (weighted runs), rounded to ``digits``."""
-
-    weights: tuple[tuple[str, float], ...] = ()  # (mode, weight); a mode not named: 1
-    scale: float = 100.0   # the score of a submission whose every run is valid
-    digits: int = 1        # decimals kept in gradebook.csv
-
-    def weight(self, mode: str) -> float:
-        return dict(self.weights).get(mode, 1.0)
-
-    def score(self, valid: dict[str, int], runs: dict[str, int]) -> float:
-        """The score from valid and total runs per mode."""
-        total = sum(self.weight(mode) * count for mode, count in runs.items())
-        if total <= 0:
-            return 0.0
-        got = sum(self.weight(mode) * valid.get(mode, 0) for mode in runs)
-        return round(self.scale * got / total, self.digits)
-
-
-@dataclass(frozen=True)
 class GradeConfig:
-    """One grading run: every submission x problem x mode."""
+    """One grading run: every submission x the rubric's items (problem x mode) x repeats."""
 
     submissions: Path       # each subfolder: one submission with make.sh and run.sh
-    problems: Path          # the *.sw problems graded (every mode each)
+    problems: Path          # the *.sw and *.kp problems graded
     out: Path               # grades.sqlite, gradebook.csv, report.md, logs/, pdf/
-    modes: tuple[str, ...] = ("point", "grad", "left")
+    rubric: Rubric = field(default_factory=Rubric)  # modes, weights, time limits, repeats
     jobs: int = 2           # runs at once (local pool size; cap on a Dask cluster)
-    timeout: float = 60.0   # seconds per run (the validator's time limit)
     build_timeout: float = 600.0  # seconds for a submission's make.sh
     scheduler: str | None = None  # a Dask scheduler's address; None: a local pool
     rerun: bool = False     # redo every build and run, finished or not
@@ -66,7 +40,9 @@ class GradeConfig:
     build_limits: Limits = field(default_factory=lambda: Limits(
         memory_bytes=4 << 30, file_bytes=1 << 30, processes=256, disk_bytes=1 << 30,
         entries=262144))
-    score: ScoreRule = field(default_factory=ScoreRule)
+    names: tuple[str, ...] | None = None  # the submissions graded; None: every subfolder
+    calibrate: bool = True  # time our own planner on each item first (relative times)
+    formats: tuple[str, ...] = ()  # more outputs: "gradescope" (results.json each)
 
     def built(self, submission: str) -> Path:
         """Where a submission's folder is kept after its make.sh (namespaces): its runs'
@@ -74,11 +50,18 @@ class GradeConfig:
         return self.out / "built" / submission
 
     def submission_names(self) -> list[str]:
-        """The submissions: subfolders of ``submissions``, sorted, hidden ones skipped."""
+        """The submissions: ``names``, or the subfolders of ``submissions``, sorted, hidden
+        ones skipped."""
+        if self.names is not None:
+            return sorted(self.names)
         return sorted(entry.name for entry in self.submissions.iterdir()
                       if entry.is_dir() and not entry.name.startswith("."))
 
     def problem_names(self) -> list[str]:
-        """The problem files graded, sorted."""
+        """The problem files (``*.sw``, ``*.kp``), sorted."""
         return sorted(entry.name for entry in self.problems.iterdir()
-                      if entry.is_file() and entry.suffix == ".sw")
+                      if entry.is_file() and entry.suffix in PROBLEM_SUFFIXES)
+
+    def items(self) -> list[Item]:
+        """The rubric's items on these problems."""
+        return self.rubric.items(self.problem_names())

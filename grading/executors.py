@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 from contextlib import contextmanager
-from typing import Iterable, Iterator
+from typing import Callable, Iterable, Iterator
 
 
 @contextmanager
@@ -27,18 +27,25 @@ def dask_executor(address: str):
         client.close()
 
 
-def each_result(executor, jobs: int, tasks: Iterable[tuple]) -> Iterator:
+def each_result(executor, jobs: int, tasks: Iterable[tuple],
+                idle: Callable[[], None] | None = None, tick: float = 1.0) -> Iterator:
     """Each task's result (a task: ``(function, *args)``) as it finishes, with at most
-    ``jobs`` submitted at once."""
+    ``jobs`` submitted at once (the next ones before a result is handed on); ``idle()``
+    after each ``tick`` seconds of waiting for one."""
     tasks = iter(tasks)
     pending: set[cf.Future] = set()
+    done: set[cf.Future] = set()
     while True:
-        for task in tasks:
-            pending.add(executor.submit(*task))
-            if len(pending) >= jobs:
+        while len(pending) < jobs:
+            task = next(tasks, None)
+            if task is None:
                 break
+            pending.add(executor.submit(*task))
+        for future in done:  # handed on while the freed slots already run the next tasks
+            yield future.result()
         if not pending:
             return
-        done, pending = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
-        for future in done:
-            yield future.result()
+        done, pending = cf.wait(pending, timeout=tick if idle else None,
+                                return_when=cf.FIRST_COMPLETED)
+        if not done and idle:
+            idle()

@@ -16,21 +16,25 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable, Iterator
 
-from grading.config import MODE_FLAGS, GradeConfig
+from grading.config import GradeConfig
 from grading.executors import dask_executor, each_result
-from grading.runs import build_one, failed_build_row, lost_build_row, lost_run_row, run_one
+from grading.problems import read_problem
+from grading.progress import Progress
+from grading.rubric import Item
+from grading.runs import (build_one, calibrate_one, failed_build_row, lost_build_row,
+                          lost_calibration_row, lost_run_row, run_one)
 from grading.store import Store
-from planning_core.problem_text import ProblemFormatError, parse_problem
-
-Progress = Callable[[int, int, dict], None]  # (finished, total, the row just stored)
+from planning_core.problem_text import ProblemFormatError
 
 
 @dataclass(frozen=True)
 class Outcome:
     """What a grading run did, and kept from an earlier one."""
 
-    runs: list[dict]        # every row of the store, sorted
+    runs: list[dict]        # the rows of the rubric's runs, sorted
     builds: dict[str, dict]  # by submission
+    items: list[Item]       # the rubric's items on these problems
+    calibration: dict[tuple[str, str], dict]  # our planner's row per (problem, mode)
     builds_done: int        # built now
     builds_kept: int        # found finished in the store
     runs_done: int          # run now (or recorded as not built)
@@ -45,20 +49,25 @@ LOCK = ".rrt-grade.lock"
 
 
 def grade(config: GradeConfig, progress: Progress | None = None) -> Outcome:
-    """Grade every submission x problem x mode into ``config.out``; resumable; raises
-    :class:`Busy` while another grading run uses the same folder."""
-    _check(config)
+    """Grade every submission x item x repeat into ``config.out``; resumable; raises
+    :class:`Busy` while another grading run uses the same folder, ValueError (one line)
+    for a bad problem or rubric."""
+    items = _check(config)
+    progress = progress or Progress(None)
     config.out.mkdir(parents=True, exist_ok=True)
     with _only_grading(config.out), contextlib.closing(Store(config.out)) as store:
-        if config.rerun:  # and what the earlier runs left: logs, PDFs, built folders
+        if config.rerun:  # and what the earlier runs left: logs, pictures, built folders
             store.clear()
-            for folder in ("logs", "pdf", "built"):
+            for folder in ("logs", "pdf", "html", "built"):
                 shutil.rmtree(config.out / folder, ignore_errors=True)
         with _Executor(config) as executor:
-            builds_done, builds_kept = _build_all(config, store, executor)
-            runs_done, runs_kept = _run_all(config, store, executor, progress)
-        return Outcome(store.runs(), store.builds(), builds_done, builds_kept, runs_done,
-                       runs_kept)
+            tasks = _Tasks(executor, config.jobs, progress)
+            builds_done, builds_kept = _build_all(config, store, tasks)
+            if config.calibrate:
+                _calibrate(config, store, tasks, items)
+            runs_done, runs_kept = _run_all(config, store, tasks, items)
+        return Outcome(_current(config, store.runs(), items), store.builds(), items,
+                       store.calibration(), builds_done, builds_kept, runs_done, runs_kept)
 
 
 @contextlib.contextmanager
@@ -79,86 +88,129 @@ def _only_grading(out: Path) -> Iterator[None]:
         os.close(fd)
 
 
-def _check(config: GradeConfig) -> None:
-    """ValueError (one line) for what would fail every run: modes, problems."""
-    unknown = [mode for mode in config.modes if mode not in MODE_FLAGS]
-    if unknown:
-        raise ValueError(f"unknown mode {unknown[0]!r} (known: {', '.join(MODE_FLAGS)})")
+def _check(config: GradeConfig) -> list[Item]:
+    """The rubric's items; ValueError (one line) for what would fail every run: no
+    problems, a bad problem, a rubric that does not fit them."""
     names = config.problem_names()
     if not names:
-        raise ValueError(f"no *.sw problems in {config.problems}")
+        raise ValueError(f"no *.sw or *.kp problems in {config.problems}")
     for name in names:
         try:
-            parse_problem((config.problems / name).read_text(errors="replace"))
-        except (OSError, ProblemFormatError) as error:
+            read_problem(config.problems / name)
+        except (OSError, ProblemFormatError, UnicodeEncodeError) as error:
             raise ValueError(f"{config.problems / name}: bad problem: {error}") from None
+    items = config.items()
+    if not items:
+        raise ValueError("the rubric leaves no problem to grade")
+    return items
 
 
-def _build_all(config: GradeConfig, store: Store, executor) -> tuple[int, int]:
+class _Tasks:
+    """Runs a phase's tasks on the executor, at most ``jobs`` at once, and tells the
+    progress of each one done and of every wait."""
+
+    def __init__(self, executor, jobs: int, progress: Progress):
+        self.executor, self.jobs, self.progress = executor, jobs, progress
+
+    def run(self, phase: str, tasks: list[tuple], store: Callable[[dict], None],
+            kept: int = 0, kept_good: int = 0, done: Iterable[dict] = ()) -> None:
+        """``tasks`` run, each row stored as it comes; ``done``: rows stored without a task."""
+        done = list(done)
+        self.progress.start(phase, kept + len(done) + len(tasks), kept, kept_good)
+        for row in done:
+            store(row)
+            self.progress.done(row)
+        for row in _each_result(self.executor, self.jobs, tasks, self.progress.idle,
+                                self.progress.tick):
+            store(row)
+            self.progress.done(row)
+        self.progress.finish()
+
+
+def _build_all(config: GradeConfig, store: Store, tasks: _Tasks) -> tuple[int, int]:
     kept = store.builds()
-    todo = [name for name in config.submission_names() if name not in kept]
-    for row in _each_result(executor, config.jobs,
-                            ((build_one, config, name) for name in todo)):
-        store.add_build(row)
-    return len(todo), len(kept)
+    names = config.submission_names()
+    todo = [name for name in names if name not in kept]
+    tasks.run("builds", [(build_one, config, name) for name in todo], store.add_build,
+              kept=len(names) - len(todo),
+              kept_good=sum(kept[name]["ok"] for name in names if name in kept))
+    return len(todo), len(names) - len(todo)
 
 
-def _run_all(config: GradeConfig, store: Store, executor, progress: Progress | None
+def _calibrate(config: GradeConfig, store: Store, tasks: _Tasks, items: list[Item]) -> None:
+    """Our planner on each item not timed yet."""
+    kept = store.calibration()
+    todo = [(calibrate_one, config, item) for item in items
+            if (item.problem, item.mode) not in kept]
+    tasks.run("calibration", todo, store.add_calibration, kept=len(items) - len(todo))
+
+
+def _keys(config: GradeConfig, items: list[Item]) -> list[tuple[str, Item, int]]:
+    """Every run: (submission, item, repeat)."""
+    return [(name, item, repeat) for name in config.submission_names() for item in items
+            for repeat in range(item.repeats)]
+
+
+def _run_all(config: GradeConfig, store: Store, tasks: _Tasks, items: list[Item]
              ) -> tuple[int, int]:
     builds = store.builds()
     finished = store.finished_runs()
-    every = [(name, problem, mode) for name in config.submission_names()
-             for problem in config.problem_names() for mode in config.modes]
-    todo = [key for key in every if key not in finished]
-    count = len(every) - len(todo)
-
-    def record(row: dict) -> None:
-        nonlocal count
-        store.add_run(row)
-        count += 1
-        if progress:
-            progress(count, len(every), row)
-
-    to_run = []
-    for key in todo:
-        build = builds[key[0]]
-        if build["ok"]:
-            to_run.append((run_one, config, *key))
-        else:
-            record(failed_build_row(*key, build))
-    for row in _each_result(executor, config.jobs, to_run):
-        record(row)
-    return len(todo), len(every) - len(todo)
+    every = _keys(config, items)
+    todo = [key for key in every
+            if (key[0], key[1].problem, key[1].mode, key[2]) not in finished]
+    kept = len(every) - len(todo)
+    kept_good = sum(row["valid"] for row in _current(config, store.runs(), items))
+    failed = [failed_build_row(*key, builds[key[0]]) for key in todo if not builds[key[0]]["ok"]]
+    to_run = [(run_one, config, *key) for key in todo if builds[key[0]]["ok"]]
+    tasks.run("runs", to_run, store.add_run, kept, kept_good, failed)
+    return len(todo), kept
 
 
-def _each_result(executor, jobs: int, tasks: Iterable[tuple]) -> Iterator[dict]:
-    """Each task's result as it finishes, at most ``jobs`` at once (on the local pool:
-    :func:`_local_results`)."""
+def _current(config: GradeConfig, rows: list[dict], items: list[Item]) -> list[dict]:
+    """The stored runs the rubric asks for (a store may hold more: an earlier rubric's)."""
+    repeats = {(item.problem, item.mode): item.repeats for item in items}
+    names = set(config.submission_names())
+    return [row for row in rows if row["submission"] in names
+            and row["repeat"] < repeats.get((row["problem"], row["mode"]), 0)]
+
+
+def _each_result(executor, jobs: int, tasks: Iterable[tuple], idle: Callable[[], None],
+                 tick: float) -> Iterator[dict]:
+    """Each task's result as it finishes, at most ``jobs`` at once, ``idle()`` after each
+    ``tick`` seconds of waiting (on the local pool: :func:`_local_results`)."""
     if isinstance(executor, _LocalPool):
-        return _local_results(executor, jobs, tasks)
-    return each_result(executor, jobs, tasks)
+        return _local_results(executor, jobs, tasks, idle, tick)
+    return each_result(executor, jobs, tasks, idle, tick)
 
 
 # The row of a task whose worker died under it twice, the second time running alone.
-_LOST: dict[Callable, Callable[..., dict]] = {build_one: lost_build_row, run_one: lost_run_row}
+_LOST: dict[Callable, Callable[..., dict]] = {build_one: lost_build_row, run_one: lost_run_row,
+                                              calibrate_one: lost_calibration_row}
 
 
-def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple]) -> Iterator[dict]:
+def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple],
+                   idle: Callable[[], None], tick: float) -> Iterator[dict]:
     """Like :func:`grading.executors.each_result`, but a worker that dies does not end
     the grading: the pool is renewed, the tasks it took down are run again one at a time,
     and one whose worker dies again gets a row that says so."""
     queue = _Queue(iter(tasks))
     pending: dict[cf.Future, tuple[tuple, bool]] = {}
+    ready: list[dict] = []
     while True:
         try:
             queue.submit(pool, jobs, pending)
             broken = False
         except BrokenProcessPool:  # it broke since the last wait
             broken = True
+        yield from ready  # stored while the freed workers already run the next tasks
+        ready = []
         if not pending and not broken:
             return
         if not broken:
-            done, _ = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+            done, _ = cf.wait(pending, timeout=tick, return_when=cf.FIRST_COMPLETED)
+            if not done:
+                idle()
+                continue
             broken = any(isinstance(future.exception(), BrokenProcessPool) for future in done)
         if broken:
             cf.wait(pending)  # the others go down with it
@@ -167,9 +219,9 @@ def _local_results(pool: _LocalPool, jobs: int, tasks: Iterable[tuple]) -> Itera
         for future in done:
             task, alone = pending.pop(future)
             if not isinstance(future.exception(), BrokenProcessPool):
-                yield future.result()
+                ready.append(future.result())
             elif alone:
-                yield _LOST[task[0]](*task[1:])
+                ready.append(_LOST[task[0]](*task[1:]))
             else:
                 queue.suspects.append(task)
 

@@ -1,22 +1,25 @@
-"""The two kinds of task, run in a worker (a local process or a Dask worker): build
-a submission, and run one submission on one problem in one mode and validate the
-answer with the validator's own functions. Each returns its row for the store."""
+"""The kinds of task, run in a worker (a local process or a Dask worker): build a
+submission; run one submission on one problem in one mode (one repeat) and validate
+the answer with the validator's own functions; time our own planner on a problem
+and mode (the calibration). Each returns its row for the store."""
 
 from __future__ import annotations
 
 import contextlib
 import dataclasses
 import functools
+import hashlib
+import os
 import shutil
 import tempfile
 import threading
 from pathlib import Path
 from typing import Iterator
 
-from grading.config import MODE_FLAGS, MODE_VEHICLES, GradeConfig, Limits
+from grading.config import GradeConfig, Limits
+from grading.problems import GradedProblem, read_problem
+from grading.rubric import Item
 from grading.sandbox import Place, Sandbox, probe
-from planning_core.problem_text import format_problem, parse_problem
-from planning_core.setups import grid_setup
 from validator.checks import ValidationReport, validate_plan
 from validator.cli import decode_output, solver_messages
 from validator.run_planner import PlannerRun, run_planner
@@ -117,10 +120,10 @@ def _build_failure(run: PlannerRun, log: Path) -> str:
     return f"{why}: {last[:200]}" if last else why
 
 
-def failed_build_row(submission: str, problem: str, mode: str, build: dict) -> dict:
+def failed_build_row(submission: str, item: Item, repeat: int, build: dict) -> dict:
     """The row of a run that was not attempted: its submission did not build."""
-    return {"submission": submission, "problem": problem, "mode": mode,
-            "verdict": "build failed", "valid": 0, "failed_check": "build",
+    return {"submission": submission, "problem": item.problem, "mode": item.mode,
+            "repeat": repeat, "verdict": "build failed", "valid": 0, "failed_check": "build",
             "message": build.get("reason") or "the build failed", "sandbox": build.get("sandbox"),
             "log": build.get("log")}
 
@@ -133,35 +136,76 @@ def lost_build_row(config: GradeConfig, submission: str) -> dict:
     return {"submission": submission, "ok": 0, "reason": LOST.format("build")}
 
 
-def lost_run_row(config: GradeConfig, submission: str, problem: str, mode: str) -> dict:
+def lost_run_row(config: GradeConfig, submission: str, item: Item, repeat: int) -> dict:
     """The ``runs`` row of a run whose worker died under it."""
-    return {"submission": submission, "problem": problem, "mode": mode,
-            "verdict": "planner failed", "valid": 0, "failed_check": "planner",
-            "message": LOST.format("run")}
+    return {"submission": submission, "problem": item.problem, "mode": item.mode,
+            "repeat": repeat, "verdict": "planner failed", "valid": 0,
+            "failed_check": "planner", "message": LOST.format("run")}
 
 
-def run_one(config: GradeConfig, submission: str, problem_name: str, mode: str) -> dict:
+def lost_calibration_row(config: GradeConfig, item: Item) -> dict:
+    """The ``calibration`` row of our planner's run whose worker died under it."""
+    return {"problem": item.problem, "mode": item.mode, "verdict": "planner failed",
+            "valid": 0}
+
+
+def run_stem(item: Item, repeat: int) -> str:
+    """The name of a run's log and PDF: ``PROBLEM-MODE``, and ``-N`` for repeat N > 1."""
+    stem = f"{Path(item.problem).stem}-{item.mode}"
+    return f"{stem}-{repeat + 1}" if repeat else stem
+
+
+def run_one(config: GradeConfig, submission: str, item: Item, repeat: int) -> dict:
     """Run ``./run.sh`` with the mode's flags on the problem, validate; the ``runs`` row."""
     sandbox = sandbox_here(config.sandbox)
-    problem = parse_problem((config.problems / problem_name).read_text(errors="replace"))
-    setup = grid_setup(problem, MODE_VEHICLES[mode])
-    stem = f"{Path(problem_name).stem}-{mode}"
+    problem = read_problem(config.problems / item.problem)
+    stem = run_stem(item, repeat)
     log = config.out / "logs" / submission / f"{stem}.stderr"
     run = _contained(config, sandbox, _place(config, sandbox, submission, build=False),
-                     ["./run.sh", *MODE_FLAGS[mode]], log,
-                     format_problem(problem).encode("ascii"), config.limits, config.timeout)
-    report = None
-    if run.ran_to_completion:
-        report = validate_plan(setup, decode_output(run.output), output_cap_exceeded=(
-            run.output_cap if run.output_cap_exceeded else None))
-    row = {"submission": submission, "problem": problem_name, "mode": mode,
-           "exit_status": run.exit_code, "signal": run.signal, "timed_out": int(run.timed_out),
-           "wall_time": round(run.wall_time, 6), "output_bytes": len(run.output),
+                     ["./run.sh", *problem.flags(item.mode)], log, problem.stdin,
+                     config.limits, item.timeout)
+    report = _validated(run, problem, item.mode)
+    row = {"submission": submission, "problem": item.problem, "mode": item.mode,
+           "repeat": repeat, "exit_status": run.exit_code, "signal": run.signal,
+           "timed_out": int(run.timed_out), "wall_time": round(run.wall_time, 6),
+           "output_bytes": len(run.output), "output_sha256": _digest(run.output),
            "sandbox": sandbox.note, "log": _drop_if_empty(log), **_verdict(run, report)}
     if not row["valid"]:
-        pdf = config.out / "pdf" / submission / f"{stem}.pdf"
-        row["pdf"] = _draw(pdf, problem, mode, report, solver_messages(run), problem_name)
+        row.update(_draw(config.out, submission, stem, problem, item.mode, report,
+                         solver_messages(run)))
     return row
+
+
+def _validated(run: PlannerRun, problem: GradedProblem, mode: str) -> ValidationReport | None:
+    """The validator's report on what the run printed; None when it did not run to its end."""
+    if not run.ran_to_completion:
+        return None
+    return validate_plan(problem.setup(mode), decode_output(run.output), output_cap_exceeded=(
+        run.output_cap if run.output_cap_exceeded else None))
+
+
+def _digest(output: bytes) -> str | None:
+    """The SHA-256 of a run's stdout (which runs printed the very same bytes)."""
+    return hashlib.sha256(output).hexdigest() if output else None
+
+
+OUR_PLANNER = Path(__file__).resolve().parents[1] / "run.sh"
+CALIBRATION_SEED = "1"
+
+
+def calibrate_one(config: GradeConfig, item: Item) -> dict:
+    """Our own planner (this checkout's ``run.sh``, a fixed seed) on the item, outside the
+    sandbox, under the item's time limit; the ``calibration`` row: its wall time is what
+    each submission's time on the item is compared with."""
+    problem = read_problem(config.problems / item.problem)
+    command = [str(OUR_PLANNER), "-seed", CALIBRATION_SEED, *problem.flags(item.mode)]
+    with open(os.devnull, "wb") as sink, _ONE_AT_A_TIME:
+        run = run_planner(command, problem.stdin, timeout=item.timeout,
+                          output_cap=config.limits.output_bytes, stderr_fd=sink.fileno())
+    verdict = _verdict(run, _validated(run, problem, item.mode))
+    return {"problem": item.problem, "mode": item.mode, "verdict": verdict["verdict"],
+            "valid": verdict["valid"], "wall_time": round(run.wall_time, 6),
+            "command": " ".join(command[1:])}
 
 
 def _verdict(run: PlannerRun, report: ValidationReport | None) -> dict:
@@ -180,15 +224,26 @@ def _verdict(run: PlannerRun, report: ValidationReport | None) -> dict:
             "tree_size": report.tree_count if plan is not None else None}
 
 
-def _draw(pdf: Path, problem, mode: str, report: ValidationReport | None,
-          notes: list[str], label: str) -> str | None:
-    """The failing run's PDF (the validator's drawing); None if it could not be drawn."""
+PICTURES = (("pdf", "pdf", ".pdf"), ("view", "html", ".html"))
+"""A failing run's pictures: its row's column, its folder in ``--out`` (then
+``SUBMISSION/STEM``), its format (validator.render_output's extension)."""
+
+
+def _draw(out: Path, submission: str, stem: str, problem: GradedProblem, mode: str,
+          report: ValidationReport | None, notes: list[str]) -> dict:
+    """A failing run's PDF and browser view (the validator's drawings), by column; a
+    picture that could not be drawn (reportlab missing among them) is None."""
     from validator.checks import INVALID_VERDICT
-    from validator.render_pdf import render_pdf  # reportlab: only for failing runs
-    pdf.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        render_pdf(str(pdf), problem, MODE_VEHICLES[mode], report, INVALID_VERDICT, notes,
-                   label)
-    except Exception:  # a drawing problem must not cost the run its row
-        return None
-    return str(pdf)
+    from validator.render_output import write_picture  # each format's module: only now
+    drawn = {}
+    for column, folder, extension in PICTURES:
+        path = out / folder / submission / f"{stem}{extension}"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            write_picture(str(path), extension, problem.problem, problem.vehicle(mode), report,
+                          INVALID_VERDICT, notes, f"{submission}: {stem}")
+        except Exception:  # a drawing problem must not cost the run its row
+            drawn[column] = None
+        else:
+            drawn[column] = str(path)
+    return drawn

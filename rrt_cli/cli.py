@@ -23,12 +23,11 @@ import random
 import sys
 from types import SimpleNamespace
 
-from planning_core import cli_args
-from planning_core.cli_args import (EXIT_USAGE, add_vehicle_flags, describe_os_error,
-                                    is_kinoplan, parse_any_problem, positive_float,
-                                    positive_int, read_problem_from_stdin, reject_vehicle_flags,
-                                    reserve_standard_fds, say, seed, vehicle_from_flags,
-                                    write_stdout)
+import cli_common
+from cli_common import (EXIT_USAGE, add_vehicle_flags, bounded_integer, describe_os_error,
+                        is_kinoplan, parse_any_problem, positive_float, positive_int,
+                        read_problem_from_stdin, reject_vehicle_flags, reserve_standard_fds,
+                        say, vehicle_from_flags, write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.setups import grid_setup, kinoplan_setup
 from rrt_cli.planners import PLANNERS
@@ -41,10 +40,17 @@ EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as shells report it
 DEFAULT_TIME_LIMIT = 30.0
 DEFAULT_ITERATIONS = 5_000_000
 DEFAULT_PLANNER = "rrt"
+SEED_LIMIT = 2 ** 64
+"""Seeds are integers in [0, SEED_LIMIT): random.Random(-n) would equal Random(n)."""
 
 
-def build_parser() -> cli_args.OneLineErrorParser:
-    parser = cli_args.OneLineErrorParser(
+def seed(text: str) -> int:
+    """A random seed: an integer in [0, 2^64)."""
+    return bounded_integer(text, 0, SEED_LIMIT - 1, "a seed is an integer in [0, 2^64)")
+
+
+def build_parser() -> cli_common.OneLineErrorParser:
+    parser = cli_common.OneLineErrorParser(
         prog="rrt_cli",
         description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
                     "problem); print the trajectory and the motion tree on stdout.",

@@ -50,8 +50,8 @@ def planner() -> None:
     entry_point()
 
 
-def draws_pdf(argv: list[str]) -> bool:
-    """Whether the validator's command line (before ``--``) asks for the PDF: no
+def draws_picture(argv: list[str]) -> bool:
+    """Whether the validator's command line (before ``--``) asks for a picture: no
     ``-noviz`` (or an abbreviation of it), no ``-h``."""
     own = argv[:argv.index("--")] if "--" in argv else argv
     return not any(a in ("-h", "--help") or len(a) > 2 and "-noviz".startswith(a) for a in own)
@@ -59,15 +59,11 @@ def draws_pdf(argv: list[str]) -> bool:
 
 def validator() -> None:
     """``./rrt-validator``: the validator; the interpreter's site-packages are added
-    only to draw the PDF (reportlab), and its absence is one line and status 2."""
+    only to draw a picture (the PDF's reportlab); the validator says in one line, with
+    status 2, when the format -o asks for needs what is not installed."""
     install()
-    if draws_pdf(sys.argv[1:]):
+    if draws_picture(sys.argv[1:]):
         import site
         site.main()  # the PDF: reportlab from the site-packages (-I: never the user's)
-        from importlib.util import find_spec
-        if find_spec("reportlab") is None:
-            sys.stderr.write("rrt-validator: drawing the PDF needs reportlab: run ./make.sh "
-                             "validator (or pip install reportlab), or pass -noviz\n")
-            sys.exit(2)
     from validator.cli import entry_point
     entry_point()

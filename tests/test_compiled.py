@@ -173,7 +173,7 @@ def test_the_family_runs_its_generated_kernels_compiled_and_stats_says_so():
     -stats names them (interpreted: the same classes and the shapes' body test)."""
     fresh_or_skip()
     probe = ("from rrt_startup.compiled import activate\nactivate()\n"
-             "from planning_core.cli_args import parse_any_problem\n"
+             "from cli_common import parse_any_problem\n"
              "from planning_core.setups import kinoplan_setup\nimport random, sys\n"
              "p = parse_any_problem(open('benchmarks/problems/family/car2-corridors.kp').read())\n"
              "setup = kinoplan_setup(p)\nsi = setup.si\n"
@@ -215,7 +215,7 @@ def test_a_world_with_compiled_tests_pickles():
     native object's __init__ takes arguments pickle does not give)."""
     fresh_or_skip()
     probe = ("import pickle\nfrom rrt_startup.compiled import activate\nactivate()\n"
-             "from planning_core.cli_args import parse_any_problem\n"
+             "from cli_common import parse_any_problem\n"
              "p = parse_any_problem(open('benchmarks/problems/family/arm2-pair1.kp').read())\n"
              "q = pickle.loads(pickle.dumps(p))\n"
              "assert q == p and q.world.segment_free(0, 0, 0.5, 0.5)\n"
@@ -242,7 +242,7 @@ def test_run_sh_stats_says_which_ran(disable):
 def test_no_compiled_module_inside_the_source_tree():
     """Python prefers an extension module to the .py beside it: none may be there."""
     suffixes = (".so", ".pyd")
-    strays = [path for package in ("planning_core", "rrt_cli", "validator")
+    strays = [path for package in ("planning_core", "cli_common", "rrt_cli", "validator")
               for path in (ROOT / package).rglob("*") if path.suffix in suffixes]
     assert strays == []
 

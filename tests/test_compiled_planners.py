@@ -15,7 +15,7 @@ from tests.conftest import ROOT, run_planner
 from tests.test_compiled import run_planner_compiled
 from validator.checks import validate_plan
 
-PACKAGES = ("planning_core", "rrt_cli", "validator", "benchmarks")
+PACKAGES = ("planning_core", "cli_common", "rrt_cli", "validator", "benchmarks")
 SMALL_CAR2 = ("kinoplan 1\nsystem car2\nworld 0 0 20 20\nrect 8 0 9 12\n"
               "start x 3 y 5 theta 0 v 0\ngoal x 14 y 5 within 2\n")
 

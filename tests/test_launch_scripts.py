@@ -15,7 +15,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 SPACE1 = ROOT / "benchmarks" / "problems" / "course" / "space-1.sw"
-PACKAGES = ("planning_core", "rrt_cli", "validator")
+PACKAGES = ("planning_core", "cli_common", "rrt_cli", "validator")
 # What a fake rrt_cli/cli.py reports about the interpreter the launcher started.
 PROBE = '''import os, sys
 def entry_point():
@@ -84,7 +84,7 @@ def test_run_sh_starts_python_without_site_and_without_the_environment(tmp_path)
 def test_run_sh_plans_on_a_bare_python3_and_writes_only_its_bytecode(tmp_path):
     """Into the checkout's .build/pycache, git-ignored: nothing else in the checkout,
     nothing in the user's cache folders."""
-    copy = checkout_copy(tmp_path, packages=("planning_core", "rrt_cli"))
+    copy = checkout_copy(tmp_path, packages=("planning_core", "cli_common", "rrt_cli"))
     before = files_under(copy)
     home, cache = tmp_path / "home", tmp_path / "cache"
     home.mkdir()

@@ -44,16 +44,34 @@ INVALID_VERDICT = "Putative solution trajectory has problems."
 START_TOLERANCE = 0.001  # in each of x and y (and dx, dy for the spaceship)
 STATE_TOLERANCE = 0.01   # check 7, in each of x, y, dx, dy
 
-CHECK_NAMES = ("parse", "nonempty", "bounds", "start", "goal", "collision", "dynamics")
-CHECK_TITLES = (
-    "the output parses",
-    "the trajectory is not empty",
-    "every trajectory state is inside the map, with legal controls",
-    "the trajectory starts at the start",
-    "the trajectory ends within 0.1 of the goal",
-    "the trajectory is collision-free",
-    "each control leads to the next state",
+
+
+@dataclass(frozen=True)
+class Check:
+    """One check of SPEC 3 (5.5 for the family), registered by name."""
+
+    name: str
+    """What grading scripts and the JSON call it."""
+    title: str
+    """What it asserts, in a few words."""
+    kinodynamic_only: bool = False
+    """It applies only to systems driven by controls."""
+
+    def applies(self, kinodynamic: bool) -> bool:
+        return kinodynamic or not self.kinodynamic_only
+
+
+CHECKS = (
+    Check("parse", "the output parses"),
+    Check("nonempty", "the trajectory is not empty"),
+    Check("bounds", "every trajectory state is inside the map, with legal controls"),
+    Check("start", "the trajectory starts at the start"),
+    Check("goal", "the trajectory ends within 0.1 of the goal"),
+    Check("collision", "the trajectory is collision-free"),
+    Check("dynamics", "each control leads to the next state", kinodynamic_only=True),
 )
+"""The checks in the order they run; a check's number is its place here (from 1)."""
+CHECK_NUMBERS = {check.name: number for number, check in enumerate(CHECKS, 1)}
 
 
 @dataclass(frozen=True)
@@ -88,8 +106,8 @@ class Limits:
 
 @dataclass(frozen=True)
 class CheckResult:
-    number: int                # 1..7, as in SPEC 3
-    name: str                  # CHECK_NAMES[number - 1]
+    number: int                # its place in CHECKS (from 1), as in SPEC 3
+    name: str                  # its name in CHECKS
     passed: bool
     message: str = ""          # on failure: the SPEC message, verbatim
     detail: str = ""           # values, expected vs found; on success a short summary
@@ -98,7 +116,7 @@ class CheckResult:
 
     @property
     def title(self) -> str:
-        return CHECK_TITLES[self.number - 1]
+        return CHECKS[self.number - 1].title
 
 
 @dataclass(frozen=True)
@@ -130,7 +148,7 @@ class ValidationReport:
 
     @property
     def checks_expected(self) -> int:
-        return 7 if self.system.kinodynamic else 6
+        return sum(check.applies(self.system.kinodynamic) for check in CHECKS)
 
     @property
     def valid(self) -> bool:
@@ -225,13 +243,14 @@ class _Validation:
         self.final_state: tuple[float, float, float, float] | None = None
         self.last_slices: list[tuple[float, float, float, float]] = []
 
-    def fail(self, number: int, message: str, detail: str, line: int | None,
+    def fail(self, check: str, message: str, detail: str, line: int | None,
              where: tuple[float, float] | None = None) -> _Failed:
-        return _Failed(CheckResult(number, CHECK_NAMES[number - 1], False, message, detail,
+        """The failure of the check named ``check``."""
+        return _Failed(CheckResult(CHECK_NUMBERS[check], check, False, message, detail,
                                    line, where))
 
-    def passed(self, number: int, detail: str = "") -> CheckResult:
-        return CheckResult(number, CHECK_NAMES[number - 1], True, "", detail)
+    def passed(self, check: str, detail: str = "") -> CheckResult:
+        return CheckResult(CHECK_NUMBERS[check], check, True, "", detail)
 
     def line_of(self, index: int) -> int:
         return self.plan.trajectory_line(index)
@@ -239,12 +258,11 @@ class _Validation:
     def other_answer_hint(self, error: PlanParseError) -> str:
         return _other_answer_hint(error, self.system)
 
-    # 1
     def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
         fields, tree_fields = row_widths(self.system)
         if output_cap is not None:
             line = text.count("\n") + 1
-            raise self.fail(1, PARSE_ERROR, f"line {line}: the planner wrote more than "
+            raise self.fail("parse", PARSE_ERROR, f"line {line}: the planner wrote more than "
                             f"{output_cap} bytes on stdout (the validator's cap); the output "
                             "was cut off there", line)
         try:
@@ -255,22 +273,21 @@ class _Validation:
             detail = f"line {error.line}: {error.message}"
             if isinstance(error, PlanRowError):
                 detail += self.other_answer_hint(error)
-            raise self.fail(1, PARSE_ERROR, detail, error.line) from None
+            raise self.fail("parse", PARSE_ERROR, detail, error.line) from None
         if self.plan.trailing_line is not None:
             self.warnings.append(f"line {self.plan.trailing_line}: text after the tree "
                                  "is ignored")
-        return self.passed(1, f"{self.plan.trajectory_count} trajectory lines, "
+        return self.passed("parse", f"{self.plan.trajectory_count} trajectory lines, "
                               f"{self.plan.tree_count} tree lines")
 
-    # 2
     def check_nonempty(self) -> CheckResult:
         if self.plan.trajectory_count == 0:
             line = self.plan.trajectory_first_line - 1
-            raise self.fail(2, EMPTY_TRAJECTORY, f"line {line}: the trajectory count is 0; "
+            raise self.fail("nonempty",
+                            EMPTY_TRAJECTORY, f"line {line}: the trajectory count is 0; "
                             "a trajectory has at least one line, the start", line)
-        return self.passed(2)
+        return self.passed("nonempty")
 
-    # 3
     def check_bounds(self) -> CheckResult:
         width, height = self.problem.width, self.problem.height
         system, printable = self.system, self.si.printable
@@ -278,37 +295,38 @@ class _Validation:
         for index, row in enumerate(self.plan.trajectory_rows()):
             x, y = row[0], row[1]
             if not printable(x, y):
-                raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: point "
+                raise self.fail("bounds", OUT_OF_BOUNDS, f"line {self.line_of(index)}: point "
                                 f"{_point(x, y)} is not strictly inside the map (0, {width}) "
                                 f"x (0, {height})", self.line_of(index), (x, y))
             if system.kinodynamic:
                 violation = system.control_violation(row[n:])
                 if violation is not None:
-                    raise self.fail(3, OUT_OF_BOUNDS, f"line {self.line_of(index)}: {violation}",
+                    raise self.fail("bounds",
+                                    OUT_OF_BOUNDS, f"line {self.line_of(index)}: {violation}",
                                     self.line_of(index), (x, y))
-        return self.passed(3)
+        return self.passed("bounds")
 
-    # 4
     def check_start(self) -> CheckResult:
         row = self.plan.trajectory_row(0)
         start, names = self.pdef.start, self.system.state_names
         line = self.line_of(0)
         sx, sy = start[0], start[1]
         if abs(row[0] - sx) > START_TOLERANCE or abs(row[1] - sy) > START_TOLERANCE:
-            raise self.fail(4, NOT_AT_START, f"line {line}: first point {_point(row[0], row[1])}"
+            raise self.fail("start",
+                            NOT_AT_START, f"line {line}: first point {_point(row[0], row[1])}"
                             f", start {_point(sx, sy)} (tolerance {START_TOLERANCE} in x and y)",
                             line, (row[0], row[1]))
         rest = range(2, len(start))
         if any(abs(row[k] - start[k]) > START_TOLERANCE for k in rest):
-            raise self.fail(4, NOT_AT_START, f"line {line}: first velocity "
+            raise self.fail("start", NOT_AT_START, f"line {line}: first velocity "
                             f"{_point(*(row[k] for k in rest))} is not at rest (tolerance "
                             f"{START_TOLERANCE} in {' and '.join(names[2:])})", line,
                             (row[0], row[1]))
-        return self.passed(4)
+        return self.passed("start")
 
-    def _slices_or_fail(self, number: int, message: str, row, line: int) -> list:
+    def _slices_or_fail(self, check: str, message: str, row, line: int) -> list:
         """The slice states of a kinodynamic row's control; a failure of check
-        ``number`` at the first slice that is not valid."""
+        ``check`` at the first slice that is not valid."""
         system = self.system
         n = len(system.state_names)
         state, control = row[:n], row[n:]
@@ -316,7 +334,7 @@ class _Validation:
         for k, sliced in enumerate(slices):
             if not self.si.is_valid(sliced):
                 x, y = sliced[0], sliced[1]
-                raise self.fail(number, message, f"line {line}: control {_angle(*control)} from "
+                raise self.fail(check, message, f"line {line}: control {_angle(*control)} from "
                                 f"state {_angle(*state)}: slice {k + 1} of {len(slices)} "
                                 f"{self.invalid_place(sliced)}", line, (x, y))
         return slices
@@ -325,7 +343,6 @@ class _Validation:
         """Where an invalid state is, for a message."""
         return f"at {_place(self.problem, state[0], state[1])}"
 
-    # 5
     def check_goal(self) -> CheckResult:
         plan, goal = self.plan, self.pdef.goal
         last = plan.trajectory_count - 1
@@ -333,7 +350,7 @@ class _Validation:
         line = self.line_of(last)
         gx, gy = goal.point
         if self.system.kinodynamic:
-            slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
+            slices = self._slices_or_fail("goal", LAST_EDGE_COLLISION, row, line)
             self.last_slices = slices
             self.final_state = slices[-1]
             x, y = slices[-1][0], slices[-1][1]
@@ -344,11 +361,11 @@ class _Validation:
             what = f"the last point {_point(x, y)}"
         distance = goal.distance((x, y))
         if not goal.accepts((x, y)):
-            raise self.fail(5, NOT_AT_GOAL, f"line {line}: {what}, {_num(distance)} from the "
+            raise self.fail("goal", NOT_AT_GOAL, f"line {line}: {what}, {_num(distance)} from the "
                             f"goal {_point(gx, gy)} (at most {goal.tolerance})", line, (x, y))
-        return self.passed(5, f"ends {_num(distance)} from the goal")
+        return self.passed("goal", f"ends {_num(distance)} from the goal")
 
-    # 6, point vehicle
+    # collision, point vehicle
     def check_point_collisions(self) -> CheckResult:
         plan, world, problem = self.plan, self.world, self.problem
         values = plan.trajectory  # x0, y0, x1, y1, ... (streamed: up to a million points)
@@ -358,13 +375,14 @@ class _Validation:
                            for k in range(n - 1))
         self.path_length = length
         if length > self.limits.max_point_path_length:
-            raise self.fail(6, TOO_LONG, f"the path is {_num(length)} map units long; the "
+            raise self.fail("collision",
+                            TOO_LONG, f"the path is {_num(length)} map units long; the "
                             f"validator samples at most {_num(self.limits.max_point_path_length)}"
                             " units", plan.trajectory_first_line)
         if n == 1:  # no segment: the sampling below covers every point but a lone one
             x, y = values[0], values[1]
             if not world.point_free(x, y):
-                raise self.fail(6, POINT_COLLISION, f"line {self.line_of(0)}: point "
+                raise self.fail("collision", POINT_COLLISION, f"line {self.line_of(0)}: point "
                                 f"{_place(problem, x, y)}", self.line_of(0), (x, y))
         cut_count = 0
         for index in range(n - 1):
@@ -374,7 +392,7 @@ class _Validation:
                        f"{_point(x1, y1)}")
             hit = world.first_sampled_collision(x0, y0, x1, y1, SAMPLE_STEP)
             if hit is not None:
-                raise self.fail(6, POINT_COLLISION, f"{segment}: the sample at "
+                raise self.fail("collision", POINT_COLLISION, f"{segment}: the sample at "
                                 f"{_place(problem, *hit)}", line, hit)
             exact = world.first_blocked_cell_on_segment(x0, y0, x1, y1)
             if exact is None:
@@ -383,7 +401,7 @@ class _Validation:
             cut = (f"{segment} cuts the corner of blocked cell ({exact.column}, {exact.row}) "
                    f"between the {SAMPLE_STEP}-unit samples")
             if self.strict:
-                raise self.fail(6, POINT_COLLISION, f"{cut} (-strict)", line, where)
+                raise self.fail("collision", POINT_COLLISION, f"{cut} (-strict)", line, where)
             self.corner_cuts.append(CornerCut(line, exact.column, exact.row, where))
             cut_count += 1
             if cut_count <= self.limits.max_warnings_listed:
@@ -391,7 +409,7 @@ class _Validation:
         if cut_count > self.limits.max_warnings_listed:
             self.warnings.append(f"... and {cut_count - self.limits.max_warnings_listed} more "
                                  "segments that cut a blocked cell's corner")
-        return self.passed(6, f"{n - 1} segments"
+        return self.passed("collision", f"{n - 1} segments"
                               + (f", {cut_count} cutting a corner" if cut_count else ""))
 
     def _motion(self, index: int, row, line: int) -> tuple[tuple, float]:
@@ -399,11 +417,11 @@ class _Validation:
         check 6 at its state or first slice that is not valid."""
         x, y = row[0], row[1]
         if not self.si.is_valid(row[:len(self.system.state_names)]):
-            raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
+            raise self.fail("collision", SPACESHIP_COLLISION, f"line {line}: state "
                             f"{self.invalid_place(row)}", line, (x, y))
         last = index == self.plan.trajectory_count - 1
         slices = (self.last_slices if last and self.last_slices
-                  else self._slices_or_fail(6, SPACESHIP_COLLISION, row, line))
+                  else self._slices_or_fail("collision", SPACESHIP_COLLISION, row, line))
         length = 0.0
         for sliced in slices:
             sx, sy = sliced[0], sliced[1]
@@ -421,7 +439,7 @@ class _Validation:
         tolerance = self.state_tolerance
         return all(abs(a - b) <= tolerance for a, b in zip(claimed, computed))
 
-    # 6 and 7, kinodynamic systems: one integration per line serves both checks.
+    # collision and dynamics, kinodynamic systems: one integration per line serves both.
     def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
         plan, names = self.plan, self.system.state_names
         n, dims = plan.trajectory_count, len(names)
@@ -440,15 +458,15 @@ class _Validation:
                 claimed = plan.trajectory_row(index + 1)[:dims]
                 if not self.same_state(claimed, end):
                     mismatch = self.fail(
-                        7, dynamics_message(row[dims:], row[:dims], claimed, end),
+                        "dynamics", dynamics_message(row[dims:], row[:dims], claimed, end),
                         f"line {line}: its control applied to its state does not give line "
                         f"{line + 1}'s state (tolerance {self.state_tolerance:g} in each of "
                         f"{', '.join(names)})", line + 1, (claimed[0], claimed[1]))
         self.path_length = length
-        collision_free = self.passed(6, self.motion_summary(n))
+        collision_free = self.passed("collision", self.motion_summary(n))
         if mismatch is not None:
             return collision_free, mismatch.result
-        return collision_free, self.passed(7)
+        return collision_free, self.passed("dynamics")
 
     def run(self, text: str, output_cap: int | None) -> list[CheckResult]:
         results: list[CheckResult] = []
@@ -533,15 +551,15 @@ class _KinoplanValidation(_Validation):
                                               f"(obstacles and body; {cap} in one of up to "
                                               f"{share})")
 
-    def _slice_budget_or_fail(self, number: int, slices: int, lines: int, what: str,
+    def _slice_budget_or_fail(self, check: str, slices: int, lines: int, what: str,
                               line: int) -> None:
-        """TOO_LONG, as a failure of check ``number``, when ``slices`` and ``lines``
+        """TOO_LONG, as a failure of ``check``, when ``slices`` and ``lines``
         pass ``Limits.max_slices`` in this world (before any slice is simulated)."""
         per_line = self.limits.line_cost
         work = slices + per_line * lines
         cap, where = self.capped(self.limits.max_slices)
         if work > cap:
-            raise self.fail(number, TOO_LONG, f"line {line}: {what} {slices} slices: {work} "
+            raise self.fail(check, TOO_LONG, f"line {line}: {what} {slices} slices: {work} "
                             f"slices to check (K + {per_line} a line) > {cap}, the most the "
                             f"validator checks{where}", line)
 
@@ -549,14 +567,15 @@ class _KinoplanValidation(_Validation):
         names = (*self.system.state_names, *self.system.control_names)
         return f" ({self.system.name}: {len(names)} numbers a line, {' '.join(names)})"
 
-    # 1: the numbers per line, then K a positive integer
+    # parse: the numbers per line, then K a positive integer
     def check_parse(self, text: str, output_cap: int | None) -> CheckResult:
         result = super().check_parse(text, output_cap)
         for index, row in enumerate(self.plan.trajectory_rows()):
             k = row[-1]
             if not (k >= 1 and k == int(k)):
                 line = self.line_of(index)
-                raise self.fail(1, PARSE_ERROR, f"line {line}: K = {k!r} (the last number) is "
+                raise self.fail("parse",
+                                PARSE_ERROR, f"line {line}: K = {k!r} (the last number) is "
                                 "not a positive integer", line)
         return result
 
@@ -570,7 +589,6 @@ class _KinoplanValidation(_Validation):
                         "(an angle may be printed in any turn within it)")
         return None
 
-    # 3
     def check_bounds(self) -> CheckResult:
         system, n = self.system, self.n
         for index, row in enumerate(self.plan.trajectory_rows()):
@@ -578,56 +596,58 @@ class _KinoplanValidation(_Validation):
                    or system.control_violation(row[n:]))
             if why is not None:
                 line = self.line_of(index)
-                raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
-        return self.passed(3)
+                raise self.fail("bounds",
+                                OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
+        return self.passed("bounds")
 
-    # 4
     def check_start(self) -> CheckResult:
         row = self.plan.trajectory_row(0)[:self.n]
         start, line = self.pdef.start, self.line_of(0)
         gaps = _gaps(self.si.space, row, start)
         if not all(gap <= KINOPLAN_TOLERANCE for gap in gaps):
             name = self.system.state_names[max(range(self.n), key=gaps.__getitem__)]
-            raise self.fail(4, NOT_AT_START, f"line {line}: first state {_angle(*row)}, start "
+            raise self.fail("start",
+                            NOT_AT_START, f"line {line}: first state {_angle(*row)}, start "
                             f"{_angle(*start)} ({name} is {_num(max(gaps))} off; tolerance "
                             f"{KINOPLAN_TOLERANCE:g} per variable, angles modulo 2 pi)", line,
                             self.where(row))
-        return self.passed(4)
+        return self.passed("start")
 
-    # 5
     def check_goal(self) -> CheckResult:
         plan, goal = self.plan, self.pdef.goal
         last = plan.trajectory_count - 1
         row, line = plan.trajectory_row(last), self.line_of(last)
-        self._slice_budget_or_fail(5, int(row[-1]), 1, "the last line holds its control", line)
-        slices = self._slices_or_fail(5, LAST_EDGE_COLLISION, row, line)
+        self._slice_budget_or_fail("goal",
+                                   int(row[-1]), 1, "the last line holds its control", line)
+        slices = self._slices_or_fail("goal", LAST_EDGE_COLLISION, row, line)
         self.last_slices = slices
         end = self.final_state = slices[-1]
         distance = goal.distance(end)
         if not goal.accepts(end):
-            raise self.fail(5, NOT_AT_GOAL, f"line {line}: the last line's control "
+            raise self.fail("goal", NOT_AT_GOAL, f"line {line}: the last line's control "
                             f"{_angle(*row[self.n:])} ends at {_angle(*end)}, {_num(distance)} "
                             f"from the goal ({', '.join(goal.names)} within {goal.tolerance:g})",
                             line, self.where(end))
-        return self.passed(5, f"ends {_num(distance)} from the goal")
+        return self.passed("goal", f"ends {_num(distance)} from the goal")
 
-    # 6 and 7: within the slice budget, then as the spaceship's
+    # collision and dynamics: within the slice budget, then as the spaceship's
     def check_kinodynamic_motion(self) -> tuple[CheckResult, CheckResult]:
         plan = self.plan
         fields, lines = plan.trajectory_fields, plan.trajectory_count
         slices = int(sum(plan.trajectory[fields - 1::fields]))
-        self._slice_budget_or_fail(6, slices, lines, f"the trajectory's {lines} lines hold "
+        self._slice_budget_or_fail("collision",
+                                   slices, lines, f"the trajectory's {lines} lines hold "
                                    "their controls", plan.trajectory_first_line)
         return super().check_kinodynamic_motion()
 
     def _motion(self, index: int, row, line: int) -> tuple[tuple, float]:
         """A line's end state and its metric length over its slices."""
         if not self.si.is_valid(row[:self.n]):
-            raise self.fail(6, SPACESHIP_COLLISION, f"line {line}: state "
+            raise self.fail("collision", SPACESHIP_COLLISION, f"line {line}: state "
                             f"{self.invalid_place(row)}", line, self.where(row))
         last = index == self.plan.trajectory_count - 1
         slices = (self.last_slices if last and self.last_slices
-                  else self._slices_or_fail(6, SPACESHIP_COLLISION, row, line))
+                  else self._slices_or_fail("collision", SPACESHIP_COLLISION, row, line))
         distance, state, length = self.si.space.distance, row[:self.n], 0.0
         for sliced in slices:
             length += distance(state, sliced)
@@ -645,30 +665,30 @@ class _GeometricValidation(_KinoplanValidation):
         return (f" ({self.system.name}: {self.n} numbers a trajectory line, {names}; "
                 f"{2 * self.n} a tree line)")
 
-    # 1: only the widths (no K)
+    # parse: only the widths (no K)
     check_parse = _Validation.check_parse
 
-    # 3
     def check_bounds(self) -> CheckResult:
         for index, row in enumerate(self.plan.trajectory_rows()):
             why = self.system.bounds_violation(row) or self.angle_violation(row)
             if why is not None:
                 line = self.line_of(index)
-                raise self.fail(3, OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
-        return self.passed(3)
+                raise self.fail("bounds",
+                                OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
+        return self.passed("bounds")
 
-    # 5: the last configuration itself
+    # goal: the last configuration itself
     def check_goal(self) -> CheckResult:
         goal, last = self.pdef.goal, self.plan.trajectory_count - 1
         end, line = self.plan.trajectory_row(last), self.line_of(last)
         distance = goal.distance(end)
         if not goal.accepts(end):
-            raise self.fail(5, NOT_AT_GOAL, f"line {line}: the last configuration "
+            raise self.fail("goal", NOT_AT_GOAL, f"line {line}: the last configuration "
                             f"{_angle(*end)} is {_num(distance)} from the goal "
                             f"({', '.join(goal.names)} within {goal.tolerance:g})", line,
                             self.where(end))
         self.final_state = end
-        return self.passed(5, f"ends {_num(distance)} from the goal")
+        return self.passed("goal", f"ends {_num(distance)} from the goal")
 
     def _segments(self):
         """``(index of the segment's first line, from, to)`` for each segment."""
@@ -691,32 +711,34 @@ class _GeometricValidation(_KinoplanValidation):
         self.path_length = length
         cap, where = self.capped(self.limits.max_motion_samples)
         if count > cap:
-            raise self.fail(6, TOO_LONG, f"the path's segments make {count} samples at the "
+            raise self.fail("collision",
+                            TOO_LONG, f"the path's segments make {count} samples at the "
                             f"check step {system.check:g}{' (-strict)' if self.strict else ''};"
                             f" the validator tests at most {cap}{where}",
                             self.plan.trajectory_first_line)
         return count
 
-    # 6: every sample of every segment
+    # collision: every sample of every segment
     def check_geometric_motion(self) -> CheckResult:
         is_valid, samples = self.si.is_valid, self.system.motion_samples
         count = self._sample_count()
         first = self.plan.trajectory_row(0)
         if not is_valid(first):
             line = self.line_of(0)
-            raise self.fail(6, POINT_COLLISION, f"line {line}: configuration "
+            raise self.fail("collision", POINT_COLLISION, f"line {line}: configuration "
                             f"{self.invalid_place(first)}", line, self.where(first))
         for index, a, b in self._segments():
             states = samples(a, b, strict=self.strict)
             for k in range(1, len(states)):
                 if not is_valid(states[k]):
                     line = self.line_of(index)
-                    raise self.fail(6, POINT_COLLISION, f"segment from line {line} "
+                    raise self.fail("collision", POINT_COLLISION, f"segment from line {line} "
                                     f"{_angle(*a)} to line {line + 1} {_angle(*b)}: sample "
                                     f"{k} of {len(states) - 1} {self.invalid_place(states[k])}",
                                     line, self.where(states[k]))
         density = " (-strict: ten times denser)" if self.strict else ""
-        return self.passed(6, f"{self.plan.trajectory_count - 1} segments, {count} samples at "
+        return self.passed("collision",
+                           f"{self.plan.trajectory_count - 1} segments, {count} samples at "
                               f"most {self.system.check:g} apart{density}")
 
     def motion_checks(self) -> tuple[CheckResult, ...]:

@@ -5,10 +5,11 @@
 
 A ``kinoplan 1`` problem (SPEC 5, first word ``kinoplan``) names its own system:
 the vehicle flags are then a usage error, the checks are SPEC 5.5's, and the PDF
-has the family's pages (render_family).
+has the family's pages (render_kinodynamic, render_geometric).
 
 argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
-stdout, the PDF with render_pdf (imported only to draw one). Exit status: 0 valid,
+stdout, the picture with render_output (-o's extension picks PDF, HTML view, SVG or
+PNG; a writer is imported only to draw one). Exit status: 0 valid,
 1 invalid, 2 usage error, bad problem or a PDF that could not be written, 3 the
 planner could not be started or timed out, 4 no verdict could be given (stdout
 closed or full, or a bug of ours), 130 interrupted (Ctrl-C, one line). Writes to
@@ -24,16 +25,15 @@ import stat
 import sys
 from typing import Sequence
 
-from planning_core.cli_args import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags,
-                                    describe_os_error, is_kinoplan, looks_like_problem_file,
-                                    parse_any_problem, positive_float,
-                                    read_problem_text_from_stdin, reject_vehicle_flags,
-                                    reserve_standard_fds, say, vehicle_from_flags, write_stdout)
+from cli_common import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags, describe_os_error,
+                        is_kinoplan, looks_like_problem_file, parse_any_problem,
+                        positive_float, read_problem_text_from_stdin, reject_vehicle_flags,
+                        reserve_standard_fds, say, vehicle_from_flags, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.setups import grid_setup, kinoplan_setup
 from planning_core.vehicles import Vehicle
-from validator.checks import (CHECK_NAMES, CHECK_TITLES, INVALID_VERDICT, CheckResult,
+from validator.checks import (CHECKS, INVALID_VERDICT, CheckResult,
                               ValidationReport, validate_plan)
 from validator.run_planner import DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun, run_planner
 
@@ -55,7 +55,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Read a problem on stdin (a .sw grid map, or a kinoplan 1 problem), run "
                     "PLANNER ARGS (everything after --) with the problem on its stdin, check "
                     "the trajectory it prints (SPEC 3, checks 1-7; kinoplan: SPEC 5.5), print "
-                    "the verdict and draw the tree in a PDF.",
+                    "the verdict and draw the tree in a picture (PDF, HTML view, SVG or PNG).",
         epilog="Exit status: 0 valid, 1 invalid, 2 usage error, bad problem or unwritable "
                "PDF, 3 the planner could not be started or timed out, 4 no verdict "
                "could be given, 130 interrupted (Ctrl-C).")
@@ -63,9 +63,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-strict", action="store_true",
                         help="a point segment cutting a blocked cell's corner between the "
                              "0.05 samples is a failure, not a warning")
-    parser.add_argument("-noviz", action="store_true", help="do not write the PDF")
+    parser.add_argument("-noviz", action="store_true", help="do not write the picture")
     parser.add_argument("-o", metavar="FILE", default=DEFAULT_PDF,
-                        help=f"the PDF to write (default: {DEFAULT_PDF})")
+                        help=f"the picture to write, its format by the extension: .pdf, .html "
+                             f"(a view for the browser), .svg or .png (default: {DEFAULT_PDF})")
     parser.add_argument("-timeout", metavar="S", type=positive_float, default=DEFAULT_TIMEOUT,
                         help=f"kill the planner's process group after S seconds "
                              f"(default: {DEFAULT_TIMEOUT:g}); exit status 3")
@@ -123,7 +124,8 @@ def report_text(report: ValidationReport) -> str:
 def _check_json(number: int, result: CheckResult | None, applicable: bool) -> dict:
     status = ("not applicable" if not applicable else "not run" if result is None
               else "passed" if result.passed else "failed")
-    return {"number": number, "name": CHECK_NAMES[number - 1], "title": CHECK_TITLES[number - 1],
+    check = CHECKS[number - 1]
+    return {"number": number, "name": check.name, "title": check.title,
             "status": status, "passed": bool(result and result.passed),
             "message": result.message if result else "",
             "detail": result.detail if result else "",
@@ -138,8 +140,8 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
     if isinstance(vehicle, Vehicle):
         kinodynamic = vehicle.is_spaceship
     by_number = {check.number: check for check in report.checks} if report else {}
-    checks = [_check_json(n, by_number.get(n), n <= 6 or bool(kinodynamic))
-              for n in range(1, 8)]
+    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic)))
+              for n, check in enumerate(CHECKS, 1)]
     failure = report.first_failure if report else None
     return {
         "verdict": ("planner failed" if report is None
@@ -191,22 +193,34 @@ def _output_path_problem(path: str) -> str | None:
     return None
 
 
-def _write_pdf(path: str, problem: Problem, vehicle: Vehicle, report: ValidationReport | None,
-               verdict: str, notes: list[str], label: str) -> bool:
-    """Draw the PDF into ``path``: True when written. A drawing bug is one line on
-    stderr and False (it must not cost the grader the verdict); a file that cannot
-    be written raises OSError (exit status 2)."""
+def _write_picture(path: str, problem: Problem, vehicle: Vehicle,
+                   report: ValidationReport | None, verdict: str, notes: list[str],
+                   label: str) -> bool:
+    """Draw the picture into ``path`` in the format its extension names: True when
+    written. A drawing bug is one line on stderr and False (it must not cost the
+    grader the verdict); a file that cannot be written raises OSError (exit status 2)."""
     # Imported here: reportlab costs a few hundred ms and -noviz runs never need it.
-    from validator.render_pdf import render_pdf
+    from validator.render_output import FORMATS, picture_format, write_picture
+    extension = picture_format(path)
     try:
-        # Given a path, render_pdf writes a temporary file beside it and renames it.
-        render_pdf(path, problem, vehicle, report, verdict, notes, label)
+        # Each writer writes a temporary file beside the path and renames it.
+        write_picture(path, extension, problem, vehicle, report, verdict, notes, label)
     except OSError:
         raise
     except Exception as error:
-        say(f"{PROG}: could not draw the PDF {path}: {error!r}")
+        say(f"{PROG}: could not draw the {FORMATS[extension]} {path}: {error!r}")
         return False
     return True
+
+
+def planner_stderr_note(run: PlannerRun) -> list[str]:
+    """For the picture of a planner that failed: the last lines it wrote on stderr
+    (its reason), control characters shown escaped, each cut to 240 characters."""
+    if not (run.exit_code or run.signal or run.timed_out) or not run.stderr_tail:
+        return []
+    lines = [line.strip() for line in decode_output(run.stderr_tail).splitlines()]
+    shown = [line.encode("ascii", "backslashreplace").decode() for line in lines if line][-2:]
+    return [f"Its stderr ends: {line[:240]}" for line in shown]
 
 
 def _separator_hint(argv: list[str], extras: list[str]) -> tuple[str, ...]:
@@ -237,10 +251,25 @@ def _parse_command_line(argv: list[str]):
         parser.error("no planner: put the planner's command after --, e.g. "
                      f"{PROG} -grad -- ./run.sh -grad < problem.sw")
     if not args.noviz:
-        why = _output_path_problem(args.o)
-        if why is not None:
-            parser.error(f"-o {args.o!r}: cannot write the PDF there ({why})")
+        _check_picture_path(parser, args.o)
     return args, vehicle, command, parser
+
+
+def _check_picture_path(parser, path: str) -> None:
+    """A usage error (exit 2) unless ``path`` names a format we write, this machine
+    can draw it and the file can be written; found before the planner runs."""
+    from validator.render_output import FORMATS, known_formats, missing_tool, picture_format
+    extension = picture_format(path)
+    if extension is None:
+        parser.error(f"-o {path!r}: unknown picture format {os.path.splitext(path)[1]!r}: "
+                     f"use one of {known_formats()}")
+    missing = missing_tool(extension)
+    if missing is not None:
+        say(f"{PROG}: {missing}")
+        raise SystemExit(EXIT_USAGE)
+    why = _output_path_problem(path)
+    if why is not None:
+        parser.error(f"-o {path!r}: cannot write the {FORMATS[extension]} there ({why})")
 
 
 def _validate(run: PlannerRun, setup, strict: bool
@@ -303,10 +332,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     pdf = None
     if not args.noviz:
         try:
-            if _write_pdf(args.o, problem, vehicle, report, verdict, messages, label):
+            if _write_picture(args.o, problem, vehicle, report, verdict,
+                              messages + planner_stderr_note(run), label):
                 pdf = args.o
         except OSError as error:
-            say(f"{PROG}: cannot write the PDF {args.o}: {describe_os_error(error)}")
+            from validator.render_output import FORMATS, picture_format
+            say(f"{PROG}: cannot write the {FORMATS[picture_format(args.o)]} {args.o}: "
+                f"{describe_os_error(error)}")
             status = EXIT_USAGE
 
     if args.json:

@@ -1,4 +1,4 @@
-"""The family's PDF pages for the geometric systems (SPEC 5.5; issue 15).
+"""The family's PDF pages for the geometric systems (SPEC 5.5).
 
 arm2: the workspace with the obstacles, the arm at poses evenly spaced (in the
 metric) along the path and the path its tip draws; then the configuration-space
@@ -17,18 +17,22 @@ from typing import Sequence
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.kinoplan import state_validator
-from validator.render_family import legend_items, thinning, tree_note
-from validator.render_plot import (TAU, FamilyOptions, Frame, PageText, clip_to, draw_axes,
-                                   draw_dot, draw_failure, draw_goal, draw_obstacles,
-                                   draw_page_text, draw_polygons, frame_in, plot_area,
-                                   polyline_ops, stroke_ops)
-from validator.render_pdf import (FAILURE_RGB, FOOTPRINT_RGB, GOAL_RGB, OBSTACLE_GRAY,
-                                  SOLUTION_RGB, START_RGB, TREE_RGB, RenderOptions,
-                                  RenderSummary)
+from validator.render_geometry import (cell_runs, invalid_cells, poses_along, thinning,
+                                       tree_note)
+from validator.render_page import (FAILURE_RGB, GOAL_RGB, OBSTACLE_GRAY, POSE_RGB, SOLUTION_RGB,
+                                   START_FILL_RGB, START_RGB, TREE_RGB, FamilyOptions,
+                                   RenderOptions, RenderSummary, family_legend_items, stroke_ops)
+from validator.render_plot import (TAU, Frame, PageText, clip_to, draw_axes, draw_bodies,
+                                   draw_dot, draw_failure, draw_goal, draw_headings,
+                                   draw_obstacles, draw_page_text, draw_polygons, draw_start,
+                                   new_page, no_answer, polyline_ops)
+
+ARM_SQUARE = (-math.pi, -math.pi, math.pi, math.pi)
 
 
 def geometric_pages(canvas: Canvas, problem, report, text: PageText, options: RenderOptions,
                     family: FamilyOptions) -> RenderSummary:
+    """arm2's workspace and configuration-space pages, or rigid2's workspace page."""
     plan = report.plan if report is not None else None
     path = []
     if plan is not None:
@@ -37,30 +41,9 @@ def geometric_pages(canvas: Canvas, problem, report, text: PageText, options: Re
     failure = report.first_failure if report is not None else None
     where = failure.where if failure is not None else None
     if problem.system.occupies == "links":
-        _arm_page(canvas, problem, path, where, text, family)
+        _arm_page(canvas, problem, report, path, where, text, family)
         return _cspace_page(canvas, problem, report, path, where, text, options, family)
     return _rigid_page(canvas, problem, report, path, where, text, options, family)
-
-
-def poses_along(system, path: Sequence, count: int) -> list:
-    """``count`` configurations evenly spaced (in the metric) along the path, both
-    ends included (the path itself when it is one configuration)."""
-    if len(path) < 2 or count < 2:
-        return list(path[:1])
-    lengths = [system.distance(a, b) for a, b in zip(path, path[1:])]
-    total = math.fsum(lengths)
-    if not (total > 0.0 and math.isfinite(total)):
-        return [path[0], path[-1]]
-    poses, segment, walked = [], 0, 0.0
-    for k in range(count):
-        at = total * k / (count - 1)
-        while segment < len(lengths) - 1 and walked + lengths[segment] < at:
-            walked += lengths[segment]
-            segment += 1
-        d = lengths[segment]
-        t = min(1.0, (at - walked) / d) if d > 0 else 1.0
-        poses.append(system.interpolate(path[segment], path[segment + 1], t))
-    return poses
 
 
 def _what(report, path: Sequence, tree: str) -> str:
@@ -81,27 +64,29 @@ def _arm_ops(frame: Frame, system, configurations) -> list[str]:
     return ops
 
 
-def _arm_page(canvas: Canvas, problem, path, where, text: PageText,
+def _arm_page(canvas: Canvas, problem, report, path, where, text: PageText,
               family: FamilyOptions) -> None:
     system, world = problem.system, problem.world
     box = world.box
-    frame = frame_in((box.x0, box.y0, box.x1, box.y1), plot_area())
+    page, frame = new_page(canvas, (box.x0, box.y0, box.x1, box.y1))
     clip_to(canvas, frame)
     draw_obstacles(canvas, frame, world)
     stroke_ops(canvas, _arm_ops(frame, system, poses_along(system, path, family.poses)[1:-1]),
-               FOOTPRINT_RGB, 1.6)
+               POSE_RGB, 1.6)
     tips: list[str] = []
     polyline_ops(frame, [system.joints(q)[2] for q in poses_along(system, path, 400)], tips)
     stroke_ops(canvas, tips, SOLUTION_RGB, 1.0)
     goal = problem.goal
     if path:
         stroke_ops(canvas, _arm_ops(frame, system, [path[-1]]), SOLUTION_RGB, 2.4)
-    if goal.full:  # thin, over the last pose that is near it
-        stroke_ops(canvas, _arm_ops(frame, system, [goal.target]), GOAL_RGB, 0.8)
     stroke_ops(canvas, _arm_ops(frame, system, [problem.start]), START_RGB, 2.4)
+    if goal.full:  # dashed, over the last pose that ends near it
+        stroke_ops(canvas, _arm_ops(frame, system, [goal.target]), GOAL_RGB, 1.4,
+                   dash=(4.0, 3.0))
     if where is not None:
         stroke_ops(canvas, _arm_ops(frame, system, [where]), FAILURE_RGB, 2.0)
     draw_dot(canvas, frame, system.joints(problem.start)[0], (0.0, 0.0, 0.0), 3.5)
+    no_answer(canvas, frame, report, text)
     canvas.restoreState()
     draw_axes(canvas, frame, "x", "y")
     what = (f"Workspace: the arm at {max(0, family.poses - 2)} poses evenly spaced along the "
@@ -109,35 +94,25 @@ def _arm_page(canvas: Canvas, problem, path, where, text: PageText,
     legend = [("solution", "red: tip path, last pose"), ("pose", "pink: arm along the path"),
               ("start", "green: start pose")]
     if goal.full:
-        legend.append(("goal", "blue: goal pose"))
+        legend.append(("goalpose", "blue dashes: goal pose"))
     if where is not None:
         legend.append(("failure", "magenta: the arm at the first failure"))
     if world.obstacles:
         legend.append(("obstacle", "grey: obstacle"))
-    draw_page_text(canvas, text, what, legend)
+    draw_page_text(canvas, text, what, legend, page)
     canvas.showPage()
 
 
 # ----- arm2: the configuration-space square ----------------------------------------------
 
-def _shade_invalid(canvas: Canvas, frame: Frame, valid, cells: int) -> None:
-    """Fill each cell of a ``cells`` x ``cells`` grid over the square whose centre
-    is not valid (runs along a row merged into one rectangle)."""
+def _shade_invalid(canvas: Canvas, frame: Frame, invalid: bytes, cells: int) -> None:
+    """Fill each cell of the ``cells`` x ``cells`` grid over the square that is
+    ``invalid`` (runs along a row merged into one rectangle)."""
     step = TAU / cells
     width, height = step * frame.sx, step * frame.sy
-    runs: list[str] = []
-    for r in range(cells):
-        t2 = -math.pi + (r + 0.5) * step
-        c = 0
-        while c < cells:
-            if valid((-math.pi + (c + 0.5) * step, t2)):
-                c += 1
-                continue
-            start = c
-            while c < cells and not valid((-math.pi + (c + 0.5) * step, t2)):
-                c += 1
-            x, y = frame.to_page(-math.pi + start * step, -math.pi + r * step)
-            runs.append(f"{x:.2f} {y:.2f} {(c - start) * width:.2f} {height:.2f} re")
+    runs = [f"{x:.2f} {y:.2f} {(end - c) * width:.2f} {height:.2f} re"
+            for r, c, end in cell_runs(invalid, cells, cells)
+            for x, y in [frame.to_page(-math.pi + c * step, -math.pi + r * step)]]
     if runs:
         canvas.saveState()
         canvas.setFillGray(OBSTACLE_GRAY)
@@ -168,14 +143,14 @@ def _plan_layer(canvas: Canvas, frame: Frame, problem, report, path, where,
     stride = 1
     if plan is not None and plan.tree_count:
         total, kept = plan.tree_count, plan.tree_rows_kept
-        stride = thinning(kept, 2 * kept, options)
+        stride = thinning(kept, 2 * kept, options.max_tree_points, options.max_tree_edges_drawn)
         stroke_ops(canvas, _tree_ops(frame, plan, n, 0, 1, stride), TREE_RGB,
                    options.tree_line_width)
     ops: list[str] = []
     polyline_ops(frame, [(q[0], q[1]) for q in path], ops)
     stroke_ops(canvas, ops, SOLUTION_RGB, options.solution_line_width)
     goal_drawn = draw_goal(canvas, frame, problem.goal, 0, 1, family.goal_rays)
-    draw_dot(canvas, frame, problem.start[:2], START_RGB)
+    draw_start(canvas, frame, problem.start[:2])
     draw_failure(canvas, frame, where)
     summary = RenderSummary(len(range(0, kept, stride)), total, len(path),
                             plan.trajectory_count if plan is not None else 0)
@@ -184,22 +159,22 @@ def _plan_layer(canvas: Canvas, frame: Frame, problem, report, path, where,
 
 def _cspace_page(canvas: Canvas, problem, report, path, where, text: PageText,
                  options: RenderOptions, family: FamilyOptions) -> RenderSummary:
-    frame = frame_in((-math.pi, -math.pi, math.pi, math.pi), plot_area(), angle_x=True,
-                     angle_y=True)
+    page, frame = new_page(canvas, ARM_SQUARE, angle_x=True, angle_y=True)
     clip_to(canvas, frame)
-    _shade_invalid(canvas, frame, state_validator(problem.system, problem.world),
-                   family.cspace_cells)
+    _shade_invalid(canvas, frame, invalid_cells(state_validator(problem.system, problem.world),
+                                                family.cspace_cells), family.cspace_cells)
     tree, goal_drawn, summary = _plan_layer(canvas, frame, problem, report, path, where, options,
-                                   family)
+                                            family)
+    no_answer(canvas, frame, report, text)
     canvas.restoreState()
     draw_axes(canvas, frame, "theta1", "theta2")
     what = (f"Configuration space (theta1, theta2), wrapping at +-pi; grey: invalid "
             f"({family.cspace_cells} x {family.cspace_cells} cells tested); "
             + _what(report, path, tree))
-    legend = legend_items(bool(path), "tree edges" in tree, goal_drawn, where is not None,
-                          False, None, "tree or roadmap edges")
+    legend = family_legend_items(bool(path), "tree edges" in tree, goal_drawn,
+                                 where is not None, False, None, "tree or roadmap edges")
     legend.append(("obstacle", "grey: arm touches an obstacle or leaves the world"))
-    draw_page_text(canvas, text, what, legend)
+    draw_page_text(canvas, text, what, legend, page)
     canvas.showPage()
     return summary
 
@@ -210,22 +185,25 @@ def _rigid_page(canvas: Canvas, problem, report, path, where, text: PageText,
                 options: RenderOptions, family: FamilyOptions) -> RenderSummary:
     system, world = problem.system, problem.world
     box = world.box
-    frame = frame_in((box.x0, box.y0, box.x1, box.y1), plot_area())
+    page, frame = new_page(canvas, (box.x0, box.y0, box.x1, box.y1))
     clip_to(canvas, frame)
     draw_obstacles(canvas, frame, world)
     poses = poses_along(system, path, 2 * family.poses)
-    draw_polygons(canvas, frame, [system.footprint(q) for q in poses], FOOTPRINT_RGB, 0.8)
+    draw_bodies(canvas, frame, system, poses)
     if problem.goal.full:
-        draw_polygons(canvas, frame, [system.footprint(problem.goal.target)], GOAL_RGB, 1.0)
-    draw_polygons(canvas, frame, [system.footprint(problem.start)], START_RGB, 1.4)
+        draw_polygons(canvas, frame, [system.footprint(problem.goal.target)], GOAL_RGB, 1.2,
+                      dash=(4.0, 3.0))
+    draw_bodies(canvas, frame, system, [problem.start], START_RGB, START_FILL_RGB, 1.4)
     tree, goal_drawn, summary = _plan_layer(canvas, frame, problem, report, path, where, options,
-                                   family)
+                                            family)
+    draw_headings(canvas, frame, system, [problem.start, *poses])
+    no_answer(canvas, frame, report, text)
     canvas.restoreState()
     draw_axes(canvas, frame, "x", "y")
     what = (f"Workspace (x, y): the body at {len(poses)} poses along the path; "
             + _what(report, path, tree))
-    legend = legend_items(bool(path), "tree edges" in tree, goal_drawn, where is not None,
-                          bool(poses), world)
-    draw_page_text(canvas, text, what, legend)
+    legend = family_legend_items(bool(path), "tree edges" in tree, goal_drawn,
+                                 where is not None, bool(poses), world)
+    draw_page_text(canvas, text, what, legend, page)
     canvas.showPage()
     return summary

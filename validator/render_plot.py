@@ -1,11 +1,12 @@
-"""Plot pieces for the family's PDF pages (render_family, render_geometric).
+"""Plot pieces for the family's PDF pages (render_kinodynamic, render_geometric).
 
 A :class:`Frame` maps a data box (the workspace, the phase plane, the torus's
 square, time against a variable) into a rectangle of the page; everything is
 drawn clipped to it. Angle axes wrap: a polyline is unwrapped along its points
 and drawn once per turn it reaches into the frame, so a segment that crosses
 pi shows split at the frame's edges. The page's text bands, legend, tick steps
-and polyline writer are render_pdf's, so both PDFs read alike.
+and polyline writer are render_page's, so the grid's and the family's PDFs read
+alike.
 """
 
 from __future__ import annotations
@@ -14,34 +15,25 @@ import math
 from dataclasses import dataclass
 from typing import Iterable, Sequence
 
-from reportlab.lib.pagesizes import landscape, letter
+from reportlab.lib.pagesizes import landscape, letter, portrait
 from reportlab.pdfgen.canvas import Canvas
 
 from planning_core.worlds.shapes import ConvexPolygon, Disc, Rect
-from validator.render_pdf import (_AXIS_LEFT, _BOTTOM_SPACE, _MARGIN, _TOP_SPACE,
-                                  GOAL_RGB, OBSTACLE_GRAY, PageLayout, _captions, _draw_captions,
-                                  _draw_legend, _draw_line, _draw_title, _failure_cross,
-                                  _polyline_ops, _stroke, _tick_label, _tick_steps)
+from validator.render_geometry import (TAU, axis_ticks, caption_lines, front_mark, goal_shape,
+                                       turns, unwrapped, wrapped)
+from validator.render_page import (AXIS_LEFT, BOTTOM_SPACE, FOOTPRINT_FILL_RGB, FOOTPRINT_RGB,
+                                   GOAL_RGB, HEADING_RGB, MARGIN, OBSTACLE_GRAY, TOP_SPACE,
+                                   PageLayout, draw_captions, draw_legend, draw_line,
+                                   draw_no_answer, draw_title, failure_cross,
+                                   layout_polyline_ops, start_mark, stroke, stroke_ops)
 
-TAU = 2.0 * math.pi
 PAGE = landscape(letter)
 _IDENTITY = PageLayout(0.0, 0.0, 0.0, 0.0, 1.0)
 _MAX_TURNS = 4  # a polyline reaching over more turns than this of an angle is not drawn
 _NAME_ROOM = 28.0  # right of the plot area: the x axis's name
-
-
-@dataclass(frozen=True)
-class FamilyOptions:
-    """What the family's pages draw, beyond render_pdf's budgets."""
-
-    footprints: int = 40
-    """About this many body footprints along a kinodynamic solution."""
-    poses: int = 12
-    """The arm or rigid body drawn at about this many poses along a geometric path."""
-    cspace_cells: int = 200
-    """The arm's configuration-space square is shaded from this many x this many tests."""
-    goal_rays: int = 72
-    """Vertices of a goal region's outline (found along rays from the goal)."""
+_PLOT_TOP = 12.0   # above the plot area: the y axis's name
+_SIDE_SPACE = MARGIN + AXIS_LEFT + 6.0 + MARGIN + _NAME_ROOM
+_MIN_PAGE_WIDTH = 432.0  # 6 in: room for the text lines beside a narrow plot
 
 
 @dataclass(frozen=True)
@@ -79,11 +71,22 @@ class Frame:
                 min(max(py, self.bottom), self.bottom + self.height))
 
 
-def plot_area() -> tuple[float, float, float, float]:
+def plot_area(page: tuple[float, float] = PAGE) -> tuple[float, float, float, float]:
     """``(left, bottom, width, height)`` of the page's room for plots."""
-    left = _MARGIN + _AXIS_LEFT + 6.0
-    return (left, _BOTTOM_SPACE, PAGE[0] - left - _MARGIN - _NAME_ROOM,
-            PAGE[1] - _TOP_SPACE - _BOTTOM_SPACE - 12.0)
+    left = MARGIN + AXIS_LEFT + 6.0
+    return (left, BOTTOM_SPACE, page[0] - left - MARGIN - _NAME_ROOM,
+            page[1] - TOP_SPACE - BOTTOM_SPACE - _PLOT_TOP)
+
+
+def page_for(box: tuple[float, float, float, float]) -> tuple[float, float]:
+    """The page for one plot of ``box`` at one scale for both axes: as large as letter
+    allows in either orientation, then cut to the plot's shape (a square workspace on
+    a page of its own shape, not in the middle of a landscape page)."""
+    w, h = box[2] - box[0], box[3] - box[1]
+    vertical = TOP_SPACE + BOTTOM_SPACE + _PLOT_TOP
+    scale = max(min((page_w - _SIDE_SPACE) / w, (page_h - vertical) / h)
+                for page_w, page_h in (portrait(letter), landscape(letter)))
+    return max(_MIN_PAGE_WIDTH, scale * w + _SIDE_SPACE), scale * h + vertical
 
 
 def frame_in(box: tuple[float, float, float, float], area, equal: bool = True,
@@ -114,19 +117,34 @@ class PageText:
 def page_text(report, verdict: str, heading: str, notes: Sequence[str]) -> PageText:
     failure = report.first_failure if report is not None else None
     return PageText(verdict, heading, report is not None and report.valid,
-                    tuple(_captions(report, notes)), failure is not None)
+                    tuple(caption_lines(report, notes)), failure is not None)
 
 
 def draw_page_text(canvas: Canvas, text: PageText, what: str,
-                   legend: list[tuple[str, str]]) -> None:
+                   legend: list[tuple[str, str]], page: tuple[float, float] = PAGE) -> None:
     """Verdict, heading and ``what`` this page shows above; failure and legend below."""
-    layout = PageLayout(PAGE[0], PAGE[1], 0.0, _BOTTOM_SPACE, 1.0)
-    _draw_title(canvas, layout, text.verdict, text.heading, text.valid)
+    layout = PageLayout(page[0], page[1], 0.0, BOTTOM_SPACE, 1.0)
+    draw_title(canvas, layout, text.verdict, text.heading, text.valid)
     canvas.setFillGray(0.0)
-    canvas.setFont("Helvetica", 9.5)
-    _draw_line(canvas, layout, PAGE[1] - _MARGIN - 41, what, "Helvetica", 9.5)
-    _draw_captions(canvas, layout, text.captions, text.failed)
-    _draw_legend(canvas, layout, legend)
+    canvas.setFont("Helvetica", 8.5)
+    draw_line(canvas, layout, page[1] - MARGIN - 41, what, "Helvetica", 8.5)
+    draw_captions(canvas, layout, text.captions, text.failed)
+    draw_legend(canvas, layout, legend)
+
+
+def new_page(canvas: Canvas, box: tuple[float, float, float, float], **angles: bool
+             ) -> tuple[tuple[float, float], Frame]:
+    """Start a page shaped to ``box`` (page_for); the page size and the box's frame."""
+    page = page_for(box)
+    canvas.setPageSize(page)
+    return page, frame_in(box, plot_area(page), **angles)
+
+
+def no_answer(canvas: Canvas, frame: Frame, report, text: PageText) -> None:
+    """Over the plot of a run with nothing to draw: why (the notes)."""
+    if report is None:
+        draw_no_answer(canvas, frame.left + frame.width / 2, frame.bottom + frame.height / 2,
+                       min(frame.width, 420.0), text.captions)
 
 
 def clip_to(canvas: Canvas, frame: Frame) -> None:
@@ -137,23 +155,6 @@ def clip_to(canvas: Canvas, frame: Frame) -> None:
     canvas.clipPath(path, stroke=0, fill=0)
 
 
-def _angle_label(value: float) -> str:
-    quarter = round(value / (math.pi / 2))
-    return {0: "0", 1: "pi/2", -1: "-pi/2", 2: "pi", -2: "-pi"}.get(quarter, f"{quarter}pi/2")
-
-
-def _axis_ticks(low: float, high: float, scale: float, angle: bool, gap: float
-                ) -> list[tuple[float, str]]:
-    if angle and (high - low) * scale >= 4 * gap:
-        step = math.pi / 2
-        return [(k * step, _angle_label(k * step))
-                for k in range(math.ceil(low / step - 1e-9), math.floor(high / step + 1e-9) + 1)]
-    step, _ = _tick_steps(scale * 30.0 / gap)
-    first = math.ceil(low / step - 1e-9)
-    return [(k * step, _tick_label(k * step))
-            for k in range(first, math.floor(high / step + 1e-9) + 1)]
-
-
 def draw_axes(canvas: Canvas, frame: Frame, x_name: str, y_name: str,
               x_labels: bool = True, y_gap: float = 30.0) -> None:
     """The frame's border; ticks out of its bottom and left edges, labelled in data
@@ -162,13 +163,13 @@ def draw_axes(canvas: Canvas, frame: Frame, x_name: str, y_name: str,
     canvas.setLineWidth(0.8)
     canvas.setStrokeGray(0.0)
     canvas.rect(frame.left, frame.bottom, frame.width, frame.height, stroke=1, fill=0)
-    xs = _axis_ticks(frame.x0, frame.x1, frame.sx, frame.angle_x, 30.0)
-    ys = _axis_ticks(frame.y0, frame.y1, frame.sy, frame.angle_y, y_gap)
+    xs = axis_ticks(frame.x0, frame.x1, frame.sx, frame.angle_x, 30.0)
+    ys = axis_ticks(frame.y0, frame.y1, frame.sy, frame.angle_y, y_gap)
     ops = [f"{frame.to_page(v, 0)[0]:.2f} {frame.bottom:.2f} m "
            f"{frame.to_page(v, 0)[0]:.2f} {frame.bottom - 4:.2f} l" for v, _ in xs]
     ops += [f"{frame.left:.2f} {frame.to_page(0, v)[1]:.2f} m "
             f"{frame.left - 4:.2f} {frame.to_page(0, v)[1]:.2f} l" for v, _ in ys]
-    _stroke(canvas, ops, (0.0, 0.0, 0.0), 0.5)
+    stroke(canvas, ops, (0.0, 0.0, 0.0), 0.5)
     canvas.setFillGray(0.0)
     canvas.setFont("Helvetica", 7.5)
     if x_labels:
@@ -184,56 +185,25 @@ def draw_axes(canvas: Canvas, frame: Frame, x_name: str, y_name: str,
 
 # ----- polylines, wrapping ----------------------------------------------------------------
 
-def _unwrapped(points: Iterable[tuple[float, float]], angle_x: bool, angle_y: bool
-               ) -> list[tuple[float, float]] | None:
-    """The points with each angle coordinate continued from the previous point's
-    (the shorter way), the first one wrapped; None if any is not finite."""
-    out: list[tuple[float, float]] = []
-    px = py = 0.0
-    for x, y in points:
-        if not (math.isfinite(x) and math.isfinite(y)):
-            return None
-        if angle_x:
-            x = px + math.remainder(x - px, TAU)
-        if angle_y:
-            y = py + math.remainder(y - py, TAU)
-        out.append((x, y))
-        px, py = x, y
-    return out
-
-
-def _turns(values: Iterable[float], angle: bool) -> range:
-    if not angle:
-        return range(0, 1)
-    values = list(values)
-    low, high = min(values), max(values)
-    return range(math.ceil((-math.pi - high) / TAU), math.floor((math.pi - low) / TAU) + 1)
-
-
 def polyline_ops(frame: Frame, points: Iterable[tuple[float, float]], out: list[str],
                  spacing: float = 0.5) -> bool:
     """Append a polyline in data coordinates, once per turn of each angle axis it
     reaches into the frame; False when it is not drawn (not finite, too many turns)."""
-    points = _unwrapped(points, frame.angle_x, frame.angle_y)
+    points = unwrapped(points, frame.angle_x, frame.angle_y)
     if not points:
         return False
-    turns_x = _turns((p[0] for p in points), frame.angle_x)
-    turns_y = _turns((p[1] for p in points), frame.angle_y)
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    turns_x = turns(min(xs), max(xs), frame.angle_x)
+    turns_y = turns(min(ys), max(ys), frame.angle_y)
     if len(turns_x) > _MAX_TURNS or len(turns_y) > _MAX_TURNS:
         return False
     left, bottom, sx, sy = frame.left, frame.bottom, frame.sx, frame.sy
     for kx in turns_x:
         for ky in turns_y:
             dx, dy = kx * TAU - frame.x0, ky * TAU - frame.y0
-            _polyline_ops([(left + (x + dx) * sx, bottom + (y + dy) * sy) for x, y in points],
-                          _IDENTITY, spacing, out)
+            layout_polyline_ops([(left + (x + dx) * sx, bottom + (y + dy) * sy) for x, y in points],
+                                _IDENTITY, spacing, out)
     return True
-
-
-def stroke_ops(canvas: Canvas, ops: list[str], rgb, width: float, every: int = 10_000) -> None:
-    """Stroke ``ops`` as paths of at most ``every`` operators each."""
-    for start in range(0, len(ops), every):
-        _stroke(canvas, ops[start:start + every], rgb, width)
 
 
 # ----- shapes -----------------------------------------------------------------------------
@@ -273,14 +243,44 @@ def draw_obstacles(canvas: Canvas, frame: Frame, world) -> None:
     canvas.restoreState()
 
 
-def draw_polygons(canvas: Canvas, frame: Frame, polygons: Iterable[ConvexPolygon], rgb,
-                  width: float) -> None:
-    """Outlines of placed bodies (footprints), one path."""
+def _polygon_ops(frame: Frame, polygons: Iterable[ConvexPolygon]) -> list[str]:
     ops: list[str] = []
     for polygon in polygons:
         points = polygon.points
-        _polyline_ops([frame.to_page(*p) for p in (*points, points[0])], _IDENTITY, 0.0, ops)
-    stroke_ops(canvas, ops, rgb, width)
+        layout_polyline_ops([frame.to_page(*p) for p in (*points, points[0])], _IDENTITY, 0.0,
+                            ops)
+    return ops
+
+
+def draw_polygons(canvas: Canvas, frame: Frame, polygons: Iterable[ConvexPolygon], rgb,
+                  width: float, dash: Sequence[float] = ()) -> None:
+    """Outlines of placed bodies (footprints), one path."""
+    stroke_ops(canvas, _polygon_ops(frame, polygons), rgb, width, dash=dash)
+
+
+def draw_bodies(canvas: Canvas, frame: Frame, system, states: Sequence, outline=FOOTPRINT_RGB,
+                fill=FOOTPRINT_FILL_RGB, width: float = 0.8) -> None:
+    """The body at each state, its footprint filled (half see-through) and outlined."""
+    if not states:
+        return
+    ops = _polygon_ops(frame, [system.footprint(s) for s in states])
+    canvas.saveState()
+    canvas.setFillColorRGB(*fill)
+    canvas.setFillAlpha(0.6)
+    canvas.addLiteral("\n".join(ops) + "\nf")  # a few dozen bodies (FamilyOptions)
+    canvas.restoreState()
+    stroke_ops(canvas, ops, outline, width)
+
+
+def draw_headings(canvas: Canvas, frame: Frame, system, states: Sequence,
+                  width: float = 1.6) -> None:
+    """Each body's front edge in a dark line: which way it faces (over the solution,
+    across it)."""
+    marks: list[str] = []
+    for state in states:
+        layout_polyline_ops([frame.to_page(*p) for p in front_mark(system, state)], _IDENTITY,
+                            0.0, marks)
+    stroke_ops(canvas, marks, HEADING_RGB, width)
 
 
 def draw_dot(canvas: Canvas, frame: Frame, point: tuple[float, float], rgb,
@@ -291,80 +291,33 @@ def draw_dot(canvas: Canvas, frame: Frame, point: tuple[float, float], rgb,
     canvas.restoreState()
 
 
+def draw_start(canvas: Canvas, frame: Frame, point: tuple[float, float]) -> None:
+    start_mark(canvas, *frame.clamped(wrapped(point[0], frame.angle_x),
+                                      wrapped(point[1], frame.angle_y)))
+
+
 def draw_failure(canvas: Canvas, frame: Frame, where: tuple[float, float] | None) -> None:
     if where is not None:
         x, y = where
-        if frame.angle_x and math.isfinite(x):
-            x = math.remainder(x, TAU)
-        if frame.angle_y and math.isfinite(y):
-            y = math.remainder(y, TAU)
-        _failure_cross(canvas, *frame.clamped(x, y), 6.0)
+        failure_cross(canvas, *frame.clamped(wrapped(x, frame.angle_x),
+                                             wrapped(y, frame.angle_y)), 6.0)
 
 
 # ----- the goal region --------------------------------------------------------------------
 
-def _reach(goal, direction: Sequence[tuple[int, float]]) -> float:
-    """How far from the goal's target along ``direction`` the region ends."""
-    target, tolerance = goal.target, goal.tolerance
-
-    def distance(r: float) -> float:
-        state = list(target)
-        for index, component in direction:
-            state[index] += r * component
-        return goal.distance(state)
-    high = max(tolerance, 1e-12)
-    while distance(high) <= tolerance and high < 1e12:
-        high *= 2.0
-    low = 0.0
-    for _ in range(50):
-        middle = (low + high) / 2
-        low, high = (middle, high) if distance(middle) <= tolerance else (low, middle)
-    return low
-
-
-def goal_ops(frame: Frame, goal, i: int, j: int, rays: int) -> list[str]:
-    """The goal region projected on variables ``i`` (across) and ``j`` (up): its
-    outline when the goal names both, a band's two edges when it names one, else
-    nothing."""
-    names = set(goal.names)
-    variables = goal.space.variables
-    has_i, has_j = variables[i].name in names, variables[j].name in names
-    gx, gy = goal.target[i], goal.target[j]
-    ops: list[str] = []
-    if has_i and has_j:
-        outline = []
-        for k in range(rays + 1):
-            c, s = math.cos(TAU * k / rays), math.sin(TAU * k / rays)
-            r = _reach(goal, ((i, c), (j, s)))
-            outline.append((gx + r * c, gy + r * s))
-        polyline_ops(frame, outline, ops, 0.0)
-    elif has_i or has_j:
-        index, centre = (i, gx) if has_i else (j, gy)
-        for sign in (1.0, -1.0):
-            edge = centre + sign * _reach(goal, ((index, sign),))
-            line = ([(edge, frame.y0), (edge, frame.y1)] if has_i
-                    else [(frame.x0, edge), (frame.x1, edge)])
-            polyline_ops(frame, line, ops, 0.0)
-    return ops
-
-
 def draw_goal(canvas: Canvas, frame: Frame, goal, i: int, j: int, rays: int) -> bool:
     """The goal region in blue (a crosshair over it when it is tiny); False when the
     goal names neither plotted variable."""
-    ops = goal_ops(frame, goal, i, j, rays)
-    if not ops:
+    lines, reach = goal_shape(goal, i, j, rays, (frame.x0, frame.y0, frame.x1, frame.y1))
+    if not lines:
         return False
+    ops: list[str] = []
+    for line in lines:
+        polyline_ops(frame, line, ops, 0.0)
     stroke_ops(canvas, ops, GOAL_RGB, 1.0)
-    names = set(goal.names)
-    variables = goal.space.variables
-    if variables[i].name in names and variables[j].name in names:
-        r = _reach(goal, ((i, 1.0),))
-        if r * frame.sx < 4.0:
-            x, y = frame.to_page(math.remainder(goal.target[i], TAU) if frame.angle_x
-                                 else goal.target[i],
-                                 math.remainder(goal.target[j], TAU) if frame.angle_y
-                                 else goal.target[j])
-            _stroke(canvas, [f"{x - 6:.2f} {y:.2f} m {x + 6:.2f} {y:.2f} l",
-                             f"{x:.2f} {y - 6:.2f} m {x:.2f} {y + 6:.2f} l"], GOAL_RGB, 1.0)
+    if reach is not None and reach * frame.sx < 4.0:
+        x, y = frame.to_page(wrapped(goal.target[i], frame.angle_x),
+                             wrapped(goal.target[j], frame.angle_y))
+        stroke(canvas, [f"{x - 6:.2f} {y:.2f} m {x + 6:.2f} {y:.2f} l",
+                        f"{x:.2f} {y - 6:.2f} m {x:.2f} {y + 6:.2f} l"], GOAL_RGB, 1.0)
     return True
-

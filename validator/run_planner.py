@@ -35,6 +35,7 @@ from typing import Callable, Sequence
 DEFAULT_TIMEOUT = 60.0
 DEFAULT_OUTPUT_CAP = 64 * 1024 * 1024
 DEFAULT_STDERR_CAP = 1024 * 1024
+STDERR_TAIL = 4096  # the last bytes of the planner's stderr kept, to show in the picture
 _READ_SIZE = 1 << 16
 _STDERR_WRITE = 4096  # at most PIPE_BUF: a pipe that polls writable takes it whole
 # After the planner exits, how long a process it left behind may keep stdout open.
@@ -65,6 +66,7 @@ class PlannerRun:
     wall_time: float = 0.0      # seconds from start to its exit (or to our kill)
     stderr_bytes: int = 0       # what it wrote on stderr; the first ``stderr_cap`` were passed on
     stderr_cap: int = DEFAULT_STDERR_CAP
+    stderr_tail: bytes = b""    # the last STDERR_TAIL bytes it wrote there (for the picture)
 
     @property
     def ran_to_completion(self) -> bool:
@@ -129,7 +131,7 @@ def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFA
                       timed_out=not exited_by_itself and not pump.cap_exceeded,
                       output_cap_exceeded=pump.cap_exceeded, output_cap=output_cap,
                       timeout=timeout, wall_time=wall, stderr_bytes=pump.stderr.total,
-                      stderr_cap=stderr_cap)
+                      stderr_cap=stderr_cap, stderr_tail=bytes(pump.stderr.tail))
 
 
 def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
@@ -279,6 +281,7 @@ class _StderrSink:
         self.fd = fd
         self.total = 0
         self.pending = bytearray()  # passed on, not yet written: at most ``cap`` bytes
+        self.tail = bytearray()     # the last STDERR_TAIL bytes taken
         self.last_byte = b"\n"
         try:
             os.fstat(fd)
@@ -287,6 +290,8 @@ class _StderrSink:
             self.broken = True
 
     def take(self, chunk: bytes) -> None:
+        self.tail += chunk[-STDERR_TAIL:]
+        del self.tail[:-STDERR_TAIL]
         room = self.cap - self.total
         self.total += len(chunk)
         if room > 0 and not self.broken:

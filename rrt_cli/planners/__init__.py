@@ -1,10 +1,11 @@
 """Planners, by the name ``-planner`` takes.
 
 Each planner module has a frozen ``Params`` dataclass and
-``solve(si, stop, rng, params) -> PlanResult`` over a
-:class:`~planning_core.space_information.SpaceInformation`. A planner declares
-the kinds of system it plans for (geometric, kinodynamic); modules are imported
-on first use so that start-up only pays for the planner it runs.
+``solve(si, pdef, stop, rng, params) -> PlanResult``, asking only what the
+protocols of :mod:`planning_core.space_information` declare. A planner declares
+the kinds of system it plans for (geometric: straight motions; kinodynamic:
+controls), on the grid and in the family alike; modules are imported on first use
+so that start-up only pays for the planner it runs.
 """
 
 from __future__ import annotations
@@ -27,40 +28,36 @@ class PlannerEntry:
 
     module: str
     kinds: frozenset
+    """The kinds of system it plans for (GEOMETRIC, KINODYNAMIC, ANY)."""
     summary: str
-    kinoplan: frozenset = frozenset()
-    """The kinds of ``kinoplan 1`` system (SPEC 5) it plans for."""
+    family_only: bool = False
+    """It asks what only the family's space information answers (blossom: ``advance``)."""
 
     def load(self):
         return importlib.import_module(self.module)
 
     def plans_for(self, system) -> bool:
-        return system_kind(system) in self.kinds
+        """A grid vehicle (the course's point or ships) of a kind it plans for."""
+        return not self.family_only and system_kind(system) in self.kinds
 
     def plans_for_kinoplan(self, system) -> bool:
-        """A kinoplan system of a kind the planner says it plans for."""
-        return system_kind(system) in self.kinoplan
+        """A ``kinoplan 1`` system (SPEC 5) of a kind it plans for."""
+        return system_kind(system) in self.kinds
 
 
 PLANNERS: dict[str, PlannerEntry] = {
-    "blossom": PlannerEntry("rrt_cli.planners.blossom", frozenset(),
+    "blossom": PlannerEntry("rrt_cli.planners.blossom", KINODYNAMIC,
                             "blossom RRT: b random controls held while valid (seed 004)",
-                            kinoplan=KINODYNAMIC),
+                            family_only=True),
     "kpiece": PlannerEntry("rrt_cli.planners.kpiece", KINODYNAMIC,
-                           "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)",
-                           kinoplan=KINODYNAMIC),
+                           "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)"),
     "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", KINODYNAMIC,
-                          "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)",
-                          kinoplan=KINODYNAMIC),
-    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner",
-                        kinoplan=ANY),
+                          "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)"),
+    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner"),
     "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", GEOMETRIC,
-                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)",
-                               kinoplan=GEOMETRIC),
+                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)"),
     "prm": PlannerEntry("rrt_cli.planners.prm", GEOMETRIC,
-                        "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)",
-                        kinoplan=GEOMETRIC),
+                        "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
     "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,
-                            "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)",
-                            kinoplan=GEOMETRIC),
+                            "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
 }

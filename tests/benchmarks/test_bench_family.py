@@ -81,12 +81,23 @@ def test_report_has_seed_layout_not_available_lines_and_the_targets():
     assert len(kpiece_ours) == 1 and NOT_AVAILABLE in kpiece_ours[0]
     assert "OMPL RRT (seed 000, C++)" in text and "0.0123 ± 0.0072" in text
     kpiece = [line for line in text.splitlines() if "OMPL control KPIECE1 " in line][0]
-    assert [c.strip() for c in kpiece.strip("|").split("|")][1:3] == ["0", "10 ± 0"]
-    targets = "\n".join(targets_table(rows))
+    # One run: its value alone, no "± 0".
+    assert [c.strip() for c in kpiece.strip("|").split("|")][1:3] == ["0", "10"]
+    targets = "\n".join(targets_table(rows, min_runs=3))
     assert "pendulum-t3: rrt median time ≤ 0.5× OMPL RRT's" in targets
     assert "0.30×" in targets and "yes" in targets
     # best median 0.03 s > 2 x 0.0123 s: not met
     assert "pendulum-t3: best planner median" in targets and "**no**" in targets
+    # Three runs of each planner are too few to judge by default (five).
+    default = parse_rows(targets_table(rows))
+    assert default and all(cells[1:] == ["not judged: 3 runs (need 5)", "–"]
+                           for cells in default)
+    assert "not judged: 3 runs (need 5)" in text
+
+
+def parse_rows(table: list[str]) -> list[list[str]]:
+    """The body rows of a Markdown table, as cells."""
+    return [[cell.strip() for cell in line.strip("|").split("|")] for line in table[2:]]
 
 
 def test_a_table_without_any_available_planner_says_so():
@@ -131,7 +142,9 @@ def test_the_command_runs_a_family_preset_end_to_end(tmp_path):
     assert all(float(r["path_duration"]) > 0 for r in rows)
     report = (tmp_path / "report.md").read_text()
     assert "### pendulum-t10" in report and "| rrt (ours)" in report
-    assert "Blossom" in report and not (tmp_path / "plots.pdf").exists()
+    assert "Blossom" in report and (tmp_path / "plots.pdf").exists()
+    page = (tmp_path / "report.html").read_text()
+    assert page.count("<svg") == 3 and "control duration (s)" in page  # time, success, cost
     again = run(["benchmarks", "--preset", "family-quick", "--report-only", "--out",
                  str(tmp_path)])
     assert again.returncode == 0 and (tmp_path / "report.md").read_text() == report

@@ -135,6 +135,31 @@ def test_targets_without_runs_to_judge_are_left_out():
     assert report.check_targets(apart) == []
 
 
+def test_a_target_with_too_few_runs_is_not_judged_and_one_run_has_no_spread():
+    def runs(seeds):
+        return [row(planner, f"course-space-{k}", seed, seconds, family="course", size=10)
+                for planner, seconds in (("rrt", 0.1), ("ompl-rrt", 0.2))
+                for k in range(2) for seed in range(1, seeds + 1)]
+    target = "point: rrt median planning time on all problems at most OMPL RRT's"
+    for seeds, verdict in ((1, ["–", "not judged: 1 run (need 5)"]),
+                           (4, ["–", "not judged: 4 runs (need 5)"]),
+                           (5, ["yes", "ratio 0.50×"])):
+        text = markdown_report(runs(seeds), {"preset": "smoke"})
+        lines = [line for line in parse_table(text.splitlines()) if line[0] == target]
+        assert [line[1:] for line in lines] == [verdict]
+        assert "at least 5 runs (seeds) of each planner" in text
+    # One problem with a single run is enough to leave the target unjudged.
+    short = [r for r in runs(5) if not (r.planner == "rrt" and r.problem == "course-space-1"
+                                        and r.seed > 1)]
+    table = parse_table(report.targets_table(short))
+    assert [line[1:] for line in table if line[0] == target] == [
+        ["–", "not judged: 1 run (need 5)"]]
+    # One run: the summary table gives its value alone, never "± 0".
+    summary = {line[0]: line for line in parse_table(summary_table(runs(1)[:1], "point"))}
+    assert summary["rrt (ours)"][2] == "0.1"
+    assert "±" not in " ".join(summary["rrt (ours)"])
+
+
 def test_targets_come_from_the_table():
     assert TARGETS[-len(ISSUE_5_TARGETS):] == ISSUE_5_TARGETS
     assert {type(target) for target in TARGETS} == {

@@ -88,6 +88,59 @@ def test_the_fingerprint_follows_the_source(tmp_path):
     (tmp_path / "rrt_cli" / "a.py").write_text("x = 2\n")
     assert code_fingerprint(False, tmp_path) != before
 
+def made_up_store(out):
+    """A store written through its API: two planners on two problems, three seeds, one
+    run unsolved."""
+    from test_bench_report import row
+    rows = [row(planner, problem, seed, 0.1 * seed + (planner == "rrt"), solved=seed != 3
+                or planner == "rrt")
+            for problem in ("maze-20", "open-20") for planner in ("rrt", "ompl-rrt")
+            for seed in (1, 2, 3)]
+    with RunStore(out, "2026-01-01T00:00:00") as store:
+        for made_up in rows:
+            store.add(made_up)
+    return rows
+
+
+def test_planner_arena_loads_the_store_with_its_own_loader(tmp_path):
+    database = pytest.importorskip(
+        "plannerarena.database", reason="plannerarena is not installed (the project's "
+        "[arena] extra; ./make.sh installs it where PyPI serves it)")
+    from plannerarena.performance import boxplot, ecdf_plot, enums_plot
+    rows = made_up_store(tmp_path)
+    data = database.load_database(tmp_path / DB_NAME)
+    assert sorted(data["problem_names"]) == ["maze-20_point", "open-20_point"]
+    runs = data["runs"]
+    assert len(runs) == len(rows)
+    # The planner column is the configuration's label, not a column of ours beside it.
+    assert sorted(runs["planner"].cast(str).unique()) == ["OMPL geometric RRT", "rrt (ours)"]
+    assert not [name for name in runs.columns if name.endswith("_right")]
+    assert {"time", "solved", "status", "memory", "solution length", "graph states",
+            "harness planner"} <= set(data["attributes"])
+    times = runs.filter(runs["experiment"] == "maze-20_point").sort("harness planner", "seed")
+    expected = sorted((r for r in rows if r.problem == "maze-20"), key=lambda r: (r.planner,
+                                                                                r.seed))
+    assert times["time"].to_list() == [r.time_seconds for r in expected]
+    assert times["solved"].to_list() == [int(r.solved) for r in expected]
+    # Planner Arena's own plots of one experiment draw.
+    status = data["enums"].filter(data["enums"]["name"] == "status")
+    for plot in (boxplot(times, "time", [], "o", True), ecdf_plot(times, "time", []),
+                 enums_plot(times, status, [])):
+        plot.draw()
+
+
+def test_a_store_of_another_layout_starts_afresh(tmp_path):
+    with sqlite3.connect(tmp_path / DB_NAME) as db:  # runs with a column named planner
+        db.execute("CREATE TABLE runs (id INTEGER PRIMARY KEY, experimentid INTEGER, "
+                   "plannerid INTEGER, time REAL, planner TEXT)")
+        db.execute("INSERT INTO runs VALUES (1, 1, 1, 0.5, 'rrt')")
+    rows = made_up_store(tmp_path)
+    with RunStore(tmp_path) as store:
+        assert sorted(store.rows().values(), key=key_of) == sorted(rows, key=key_of)
+    with sqlite3.connect(tmp_path / DB_NAME) as db:
+        assert db.execute("SELECT COUNT(*) FROM progress").fetchone() == (0,)
+
+
 def test_an_unreachable_scheduler_is_one_line_and_exit_2(tmp_path, capsys):
     dask = pytest.importorskip("dask")
     pytest.importorskip("distributed")

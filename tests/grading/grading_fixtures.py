@@ -8,7 +8,18 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = ROOT / "benchmarks" / "problems" / "course"
+FAMILY = ROOT / "benchmarks" / "problems" / "family"
 OUR_RUN = ROOT / "run.sh"
+
+# Two copies of one submission under different names (a fixed seed: the same answers),
+# and a third of its own (its own seed and words; it says its flags on stderr).
+_COPIED = ("# Team Hydra's planner: a fixed seed, so that every run repeats exactly.\n"
+           "seed=4242\nattempt=1\n"
+           'echo "hydra: attempt $attempt with seed $seed" >&2\n'
+           'exec "{run}" -seed "$seed" "$@"')
+_OTHER = ("# Team Kraken's planner: its own seed, its own words.\n"
+          'for flag in "$@"; do echo "kraken: flag $flag" >&2; done\n'
+          'exec "{run}" -seed 777 "$@"')
 
 # name -> (make.sh body, run.sh body); {outside}, {run} and {nap} are filled in.
 CLASS = {
@@ -21,7 +32,19 @@ CLASS = {
     "forks": ("", "sleep {nap}1 &\n(setsid sleep {nap}2 &)\n"
                   'exec "{run}" "$@"'),
     "escape": ("", 'echo x > "{outside}" 2>/dev/null\nexec "{run}" "$@"'),
+    "copy-a": ("", _COPIED),
+    "copy-b": ("", _COPIED),
+    "other": ("", _OTHER),
 }
+
+# Valid on alternate runs of each problem and mode: each run takes the next number of its
+# own (mkdir is atomic: repeats running at once never share one) in its folder, so only
+# without the sandbox, whose runs' writes are thrown away; odd numbers print garbage.
+FLAKY = ("", 'problem=$(cat)\n'
+             'key=$(printf "%s %s" "$problem" "$*" | cksum | cut -d" " -f1)\n'
+             'n=0\nwhile ! mkdir "run-$key-$n" 2>/dev/null; do n=$((n + 1)); done\n'
+             'if [ $((n % 2)) -eq 1 ]; then echo garbage; exit 0; fi\n'
+             'printf "%s\\n" "$problem" | exec "{run}" "$@"')
 
 
 def nap(base: Path) -> str:
@@ -49,8 +72,13 @@ def make_class(base: Path, names: list[str], problems: list[str]) -> tuple[Path,
     for name in names:
         make_submission(submissions, name, *CLASS[name], outside / f"{name}.txt")
     for problem in problems:
-        shutil.copy(COURSE / problem, problem_dir / problem)
+        shutil.copy(problem_file(problem), problem_dir / problem)
     return submissions, problem_dir, outside
+
+
+def problem_file(name: str) -> Path:
+    """A course problem (.sw) or a family one (.kp) of the checkout."""
+    return (FAMILY if name.endswith(".kp") else COURSE) / name
 
 
 # Hostile submissions: each tries what docs/grading.md says it cannot do, says on
@@ -111,3 +139,52 @@ def make_hostile(base: Path, names: list[str], problems: list[str], **paths) -> 
     for problem in problems:
         shutil.copy(COURSE / problem, problem_dir / problem)
     return submissions, problem_dir
+
+
+# A graded class without grading: rows as the store holds them, for the reports' tests.
+# Each name's verdict per run: v valid, p invalid (parse), c invalid (collision), t timed
+# out, b build failed; one letter per item x repeat, in the items' order.
+HOSTILE_NAME = "x<img src=x onerror=alert(1)>\"'&amp;"
+HOSTILE_TEXT = "</script><img src=x onerror=alert(2)><b>bold</b> \"q\" 'q' &amp; [l](http://e)"
+SYNTHETIC = {"alice": "vvvvvv", "bob": "vvpvcv", "carol": "vcvpvt", "dave": "bbbbbb",
+             "erin10": "vvvvvp", "erin9": "pppppp", HOSTILE_NAME: "ccvvvv"}
+
+
+def synthetic_results(out: Path, names: dict[str, str] | None = None):
+    """A ``grading.scores.Results`` of simple-0.sw in point and grad (2 repeats each) and
+    pendulum-t3.kp (2 repeats) for ``names`` (SYNTHETIC), with failing runs' PDFs and
+    views named (not written), calibration, a failed build and hostile text."""
+    from grading.rubric import Rubric
+    from grading.scores import Results, scored
+    rubric = Rubric(modes=("point", "grad"), repeats=2)
+    items = rubric.items(["pendulum-t3.kp", "simple-0.sw"])
+    verdicts = {"v": ("valid", None, None), "p": ("invalid", "parse", "Could not parse"),
+                "c": ("invalid", "collision", HOSTILE_TEXT), "t": ("planner failed", "planner",
+                                                                   "timed out " + HOSTILE_TEXT),
+                "b": ("build failed", "build", "make.sh exited 3: " + HOSTILE_TEXT)}
+    runs = []
+    for name, letters in (names or SYNTHETIC).items():
+        pairs = [(item, repeat) for item in items for repeat in range(item.repeats)]
+        for number, ((item, repeat), letter) in enumerate(zip(pairs, letters)):
+            verdict, check, message = verdicts[letter]
+            stem = f"{Path(item.problem).stem}-{item.mode}" + (f"-{repeat + 1}" if repeat else "")
+            row = {"submission": name, "problem": item.problem, "mode": item.mode,
+                   "repeat": repeat, "verdict": verdict, "valid": int(letter == "v"),
+                   "failed_check": check, "message": message,
+                   "detail": "near (1, 2) " + HOSTILE_TEXT if letter == "c" else None,
+                   "timed_out": int(letter == "t"), "sandbox": "none",
+                   "wall_time": None if letter == "b" else 0.5 + 0.25 * number,
+                   "path_length": 3.5 if letter == "v" else None, "tree_size": 40 + number,
+                   "log": str(out / "logs" / name / f"{stem}.stderr")}
+            if letter != "v":
+                row["pdf"] = str(out / "pdf" / name / f"{stem}.pdf")
+                row["view"] = str(out / "html" / name / f"{stem}.html")
+            runs.append(row)
+    builds = {name: {"submission": name, "ok": int("b" not in letters), "sandbox": "none",
+                     "reason": None if "b" not in letters else "make.sh exited 3: " + HOSTILE_TEXT,
+                     "log": str(out / "logs" / name / "make.log")}
+              for name, letters in (names or SYNTHETIC).items()}
+    calibration = {(item.problem, item.mode): {"problem": item.problem, "mode": item.mode,
+                                               "valid": 1, "verdict": "valid", "wall_time": 0.5}
+                   for item in items}
+    return Results(rubric, items, calibration, builds, scored(rubric, items, runs), out)

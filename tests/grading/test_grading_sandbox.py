@@ -18,6 +18,7 @@ import pytest
 
 from grading.config import GradeConfig, Limits
 from grading.grade import grade
+from grading.rubric import Rubric
 from grading.runs import sandbox_here
 from grading.sandbox import FIRST_UID, FULL, SLOTS, Place, Sandbox
 from grading_fixtures import HOSTILE, ROOT, make_hostile, make_submission
@@ -219,7 +220,8 @@ def _grade_one(tmp_path: Path, make: str, run: str, **limits) -> tuple[Path, Pat
     problems.mkdir()
     (problems / "simple-0.sw").write_text((ROOT / "benchmarks/problems/course/simple-0.sw")
                                           .read_text())
-    config = GradeConfig(tmp_path / "subs", problems, tmp_path / "out", modes=MODES, jobs=1,
+    config = GradeConfig(tmp_path / "subs", problems, tmp_path / "out",
+                         rubric=Rubric(modes=MODES), jobs=1, calibrate=False,
                          limits=Limits(**limits), build_limits=Limits(**limits))
     outcome = grade(config)
     return config.out, folder, {row["mode"]: row for row in outcome.runs}
@@ -268,7 +270,7 @@ def test_a_submission_that_is_a_link_to_a_folder_of_roots_is_not_copied_for_it(t
     (tmp_path / "problems" / "simple-0.sw").write_bytes(
         (ROOT / "benchmarks/problems/course/simple-0.sw").read_bytes())
     outcome = grade(GradeConfig(tmp_path / "subs", tmp_path / "problems", tmp_path / "out",
-                                modes=("point",), jobs=1))
+                                rubric=Rubric(modes=("point",)), jobs=1, calibrate=False))
     build = outcome.builds["linked"]
     assert not build["ok"] and "Not a directory" in build["reason"]
     assert "root's own" not in (tmp_path / "out" / "logs" / "linked" / "make.log").read_text()

@@ -1,5 +1,5 @@
 """What rrt-grade trusts less than it did: a second rrt-grade on the same --out, text
-written by submissions in report.md, stderr and make.sh's output in the logs, a run
+written by submissions in report.md and report.html, stderr and make.sh's output in the logs, a run
 that outlives its timeout, a worker that dies under a run."""
 
 from __future__ import annotations
@@ -102,7 +102,7 @@ def test_the_lock_goes_with_rrt_grade_killed_while_its_workers_still_unwind(tmp_
     assert workers
 
 
-def test_report_md_shows_what_submissions_and_planners_wrote_as_text(tmp_path):
+def test_the_reports_show_what_submissions_and_planners_wrote_as_text(tmp_path):
     submissions, problems = _class(tmp_path, {
         "x<img src=1 onerror=alert(1)>": ("", "echo '1'; echo '<script>alert(2)</script> 3'"),
         "mk": ("echo '[click](http://evil) <img src=x onerror=alert(3)>'; exit 1", "")})
@@ -115,6 +115,18 @@ def test_report_md_shows_what_submissions_and_planners_wrote_as_text(tmp_path):
                   "\\[click\\](http://evil) &lt;img src=x onerror=alert(3)&gt;"):
         assert shown in report
     assert "(pdf/x%3Cimg%20src%3D1%20onerror%3Dalert%281%29%3E/simple-0-point.pdf)" in report
+    pages = [out / "report.html", *(out / "html").glob("*/index.html"),
+             *(out / "html").glob("*/simple-0-point.html")]
+    assert len(pages) == 4  # the class, two submissions, the view of the one that built
+    for page in pages:
+        text = page.read_text()
+        for raw in ("<img", "<script>alert", "onerror=alert(1)>"):
+            assert raw not in text, page
+    assert "x&lt;img src=1 onerror=alert(1)&gt;" in (out / "report.html").read_text()
+    assert "&lt;script&gt;alert(2)&lt;/script&gt;" in (
+        out / "html" / "x<img src=1 onerror=alert(1)>" / "index.html").read_text()
+    assert "[click](http://evil) &lt;img src=x onerror=alert(3)&gt;" in (
+        out / "html" / "mk" / "index.html").read_text()
 
 
 def test_a_runs_stderr_and_make_sh_output_are_kept_up_to_1_mib(tmp_path):
@@ -159,3 +171,14 @@ def test_a_worker_that_dies_costs_only_the_run_it_was_running(tmp_path, capsys):
                      "second time running alone)")] * 2
     good = db.execute("SELECT * FROM runs WHERE submission = 'good' AND NOT valid").fetchall()
     assert _gradebook(out)["good"]["score"] == "100.0", (good, capsys.readouterr())
+
+
+def test_submission_names_stay_text_in_the_gradebook_and_the_terminal(tmp_path):
+    from grading.report import summary_table, write_gradebook
+    rows = [{"submission": name, "valid": 1, "runs": 1, "valid_point": 1, "score": 100.0}
+            for name in ("=HYPERLINK(\"http://x\")", "+1", "\x1b[2Jwiped", "alice")]
+    with open(write_gradebook(tmp_path, rows), newline="") as saved:
+        cells = [row["submission"] for row in csv.DictReader(saved)]
+    assert cells == ["'=HYPERLINK(\"http://x\")", "'+1", "\x1b[2Jwiped", "alice"]
+    table = summary_table(rows)
+    assert "\x1b" not in table and "\\x1b[2Jwiped" in table

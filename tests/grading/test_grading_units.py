@@ -8,17 +8,27 @@ import sys
 import pytest
 
 from grading.cli import main
-from grading.config import Limits, ScoreRule
+from grading.config import Limits
+from grading.rubric import Rubric, score
 from grading.sandbox import Place, Sandbox
 from grading_fixtures import ROOT
 
 
+def _score(rubric: Rubric, valid: dict[str, int]) -> float:
+    """Five problems in point and grad; the first ``valid[mode]`` of them valid in mode."""
+    items = rubric.items([f"p{n}.sw" for n in range(5)])
+    shares = {(item.problem, item.mode): float(int(item.problem[1]) < valid.get(item.mode, 0))
+              for item in items}
+    return score(rubric.points(items), shares, rubric.digits)
+
+
 def test_the_score_weighs_modes_and_scales():
-    runs = {"point": 5, "grad": 5}
-    assert ScoreRule().score({"point": 5, "grad": 0}, runs) == 50.0
-    assert ScoreRule(weights=(("grad", 3.0),)).score({"point": 5}, runs) == 25.0
-    assert ScoreRule(scale=20, digits=2).score({"point": 1, "grad": 1}, runs) == 4.0
-    assert ScoreRule().score({}, {}) == 0.0
+    modes = ("point", "grad")
+    assert _score(Rubric(modes=modes), {"point": 5}) == 50.0
+    assert _score(Rubric(modes=modes, mode_weights=(("grad", 3.0),)), {"point": 5}) == 25.0
+    assert _score(Rubric(modes=modes, scale=20, digits=2), {"point": 1, "grad": 1}) == 4.0
+    assert _score(Rubric(modes=modes, scale=None), {"point": 5, "grad": 2}) == 7.0
+    assert score({}, {}, 1) == 0.0
 
 
 @pytest.mark.parametrize("argv", [

@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from planning_core import cli_args
+import cli_common
 from tests.conftest import COURSE_DIR, ROOT, run_planner
 
 SPACE0 = (COURSE_DIR / "space-0.sw").read_text()
@@ -72,7 +72,7 @@ class EndlessBytes(io.RawIOBase):
 def test_reader_takes_at_most_cap_plus_one_bytes(monkeypatch, capsys):
     raw = EndlessBytes()
     monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(raw, 4096)))
-    assert cli_args.read_problem_text_from_stdin("prog", cap=100_000) is None
+    assert cli_common.read_problem_text_from_stdin("prog", cap=100_000) is None
     assert raw.taken <= 100_000 + 1 + 4096   # the cap, one byte past it, one buffer
     err = capsys.readouterr().err
     assert err.startswith("prog: bad problem: more than 100000 bytes on stdin") and \
@@ -87,7 +87,7 @@ def test_the_cap_is_64_mib(size, code):
     assert done.returncode == code
     if code:
         assert "more than 67108864 bytes on stdin (the cap is 64 MiB)" in one_error_line(done)
-    assert getattr(cli_args, "MAX_PROBLEM_BYTES", None) == CAP
+    assert getattr(cli_common, "MAX_PROBLEM_BYTES", None) == CAP
 
 
 # ----- item 7: exit statuses ---------------------------------------------------------

@@ -15,9 +15,9 @@ from tests.validator.test_family_checks import PROBLEM as CAR2, answer as car2_a
 from tests.validator.test_family_checks import printing, validator
 from tests.validator.test_family_geometric_checks import RIGID, answer as path_answer
 from validator.checks import validate_plan
-from validator.render_family import render_family
-from validator.render_pdf import RenderOptions, render_pdf
-from validator.render_plot import PAGE, FamilyOptions, frame_in, plot_area, polyline_ops
+from validator.render_page import FamilyOptions, RenderOptions
+from validator.render_pdf import render_pdf
+from validator.render_plot import frame_in, page_for, plot_area, polyline_ops
 
 ARM = """kinoplan 1
 system arm2
@@ -38,8 +38,8 @@ def render(problem_text: str, output: str, options: RenderOptions = RenderOption
     problem = parse_kinoplan(problem_text)
     report = validate_plan(kinoplan_setup(problem), output)
     out = io.BytesIO()
-    summary = render_family(out, problem, report, report.verdict, ["a note"], "test.kp",
-                            options, FamilyOptions(cspace_cells=cells))
+    summary = render_pdf(out, problem, None, report, report.verdict, ["a note"], "test.kp",
+                         options, FamilyOptions(cspace_cells=cells))
     return report, summary, pdfium.PdfDocument(out.getvalue())
 
 
@@ -51,11 +51,13 @@ def pixel(document, page: int, frame, x: float, y: float) -> tuple[int, int, int
     """The colour at data point (x, y) of ``frame`` on the page, rendered at 2x."""
     image = document[page].render(scale=2).to_pil().convert("RGB")
     px, py = frame.to_page(x, y)
-    return image.getpixel((round(2 * px), round(2 * (PAGE[1] - py))))
+    return image.getpixel((round(2 * px), round(2 * (document[page].get_height() - py))))
 
 
-def workspace_frame(x0, y0, x1, y1):
-    return frame_in((x0, y0, x1, y1), plot_area())
+def workspace_frame(x0, y0, x1, y1, **angles):
+    """A plot of the box at one scale, on a page of its shape (render_plot.new_page)."""
+    box = (x0, y0, x1, y1)
+    return frame_in(box, plot_area(page_for(box)), **angles)
 
 
 def grey(rgb) -> bool:
@@ -69,9 +71,9 @@ def test_car2_workspace_and_time_pages():
     assert report.valid and len(document) == 2
     first = text(document, 0)
     assert "Solution trajectory appears valid." in first
-    assert "Workspace (x, y): 2 tree edges; solution re-simulated slice by slice (3 lines)" \
-        in first
-    assert "pink: body footprint along the solution" in first
+    assert "Workspace (x, y): 2 tree edges; solution re-simulated slice by slice (3 lines, " \
+        "the body at every slice); duration 3 s" in first
+    assert "pink: body along the solution (dark edge: its front)" in first
     assert "State and control against time" in text(document, 1)
     assert "control omega" in text(document, 1)
     assert (summary.tree_edges_drawn, summary.solution_lines_drawn) == (2, 3)
@@ -112,7 +114,7 @@ def test_arm_workspace_and_configuration_space_shaded_where_invalid():
     assert "Workspace: the arm at" in text(document, 0)
     cspace = text(document, 1)
     assert "Configuration space (theta1, theta2)" in cspace and "60 x 60 cells" in cspace
-    frame = frame_in((-math.pi, -math.pi, math.pi, math.pi), plot_area())
+    frame = workspace_frame(-math.pi, -math.pi, math.pi, math.pi)
     assert grey(pixel(document, 1, frame, math.pi / 2, 0.0))    # the stretched arm up: disc
     assert pixel(document, 1, frame, 2.5, 2.5) == (255, 255, 255)
     world = workspace_frame(-2.2, -2.2, 2.2, 2.2)

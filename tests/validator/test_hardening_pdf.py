@@ -25,9 +25,11 @@ from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
-from validator.render_pdf import (BLOCKED_GRAY, CORNER_RGB, FAILURE_RGB, GOAL_RGB,
-                                  SOLUTION_RGB, START_RGB, TREE_RGB, RenderOptions,
-                                  page_layout, render_pdf, solution_points)
+from validator.render_geometry import solution_points
+from validator.render_grid import page_layout
+from validator.render_page import (BLOCKED_GRAY, CORNER_RGB, FAILURE_RGB, GOAL_RGB,
+                                   SOLUTION_RGB, START_RGB, TREE_RGB, RenderOptions)
+from validator.render_pdf import render_pdf
 from validator_testlib import CORPUS, PROBLEMS, ROOT
 
 SCALE = 3.0  # pixels per PDF point

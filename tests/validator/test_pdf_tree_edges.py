@@ -23,7 +23,9 @@ import pypdfium2 as pdfium
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
-from validator.render_pdf import TREE_RGB, page_layout, render_pdf
+from validator.render_grid import page_layout
+from validator.render_page import TREE_RGB
+from validator.render_pdf import render_pdf
 from validator_testlib import colour_near
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -15,8 +15,10 @@ from planning_core.plan_text import format_plan
 from planning_core.problem import Problem
 from planning_core.vehicles import Vehicle
 from validator.checks import validate_output
-from validator.render_pdf import (FAILURE_RGB, SOLUTION_RGB, RenderOptions, page_layout,
-                                  render_pdf, solution_points)
+from validator.render_geometry import solution_points
+from validator.render_grid import page_layout
+from validator.render_page import FAILURE_RGB, SOLUTION_RGB, RenderOptions
+from validator.render_pdf import render_pdf
 from validator_testlib import CORPUS, colour_near, load_problem, run_validator
 
 SCALE = 2.0  # pixels per PDF point when rasterising

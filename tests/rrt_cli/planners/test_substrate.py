@@ -15,7 +15,7 @@ from tests.conftest import COURSE_DIR, ROOT, plan_in_process
 from validator.checks import validate_output, validate_plan
 
 ENTRY = PlannerEntry("tests.rrt_cli.planners.toy_expansive", KINODYNAMIC,
-                     "a random tree of random motions", kinoplan=KINODYNAMIC)
+                     "a random tree of random motions")
 PENDULUM = (ROOT / "benchmarks" / "problems" / "family" / "pendulum-t3.kp").read_text()
 
 

@@ -1,8 +1,13 @@
-"""What every command line of the project shares: an argument parser whose errors
-are one usage line and one error line on stderr with exit status 2 (never a
-traceback), with hints for the usual slips; the option types (ASCII numbers only,
-ranges checked before any conversion); the one bounded reader of the problem on
-stdin; and writes to stdout and stderr that never raise.
+"""What the project's command lines share (rrt_cli, validator, grading, benchmarks):
+an argument parser whose errors are one usage line and one error line on stderr
+with exit status 2 (never a traceback), with hints for the usual slips; the option
+types (ASCII numbers only, ranges checked before any conversion); the course's
+vehicle flags; writes to stdout and stderr that never raise (so never change an
+exit status); the one bounded reader of the problem on stdin, and the reader of
+either problem format (a ``.sw`` grid or a ``kinoplan 1`` problem).
+
+Above planning_core, below every command line; a command line's own options stay in
+its package. One module, as the planner imports it on every run.
 
 argparse is imported only when a parser is made or an option value is bad
 (:data:`OneLineErrorParser` is made on first use): the planner parses its common
@@ -21,21 +26,16 @@ from planning_core.problem_text import ProblemFormatError, parse_problem
 from planning_core.vehicles import Vehicle
 
 EXIT_USAGE = 2
-MAX_PROBLEM_BYTES = 64 * 1024 * 1024
-"""The most bytes of problem read from stdin (the validator's cap on a planner's
-output); a longer stdin is a bad problem, found after reading one byte past it."""
-SEED_LIMIT = 2 ** 64
-"""Seeds are integers in [0, SEED_LIMIT): random.Random(-n) would equal Random(n)."""
 MAX_COUNT = 2 ** 63 - 1
 """The largest integer option (an iteration limit)."""
 
 _INTEGER = re.compile(r"[+-]?[0-9]+")
 _DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+MAX_PROBLEM_BYTES = 64 * 1024 * 1024
+"""The most bytes of problem read from stdin (the validator's cap on a planner's
+output); a longer stdin is a bad problem, found after reading one byte past it."""
 _READ_CHUNK = 1 << 20
-
-
-def _show(text: str) -> str:
-    return repr(text if len(text) <= 40 else text[:37] + "...")
 
 
 # ----- writes that never raise ------------------------------------------------------
@@ -187,6 +187,10 @@ def __getattr__(name: str):
 # ----- option types -----------------------------------------------------------------
 
 
+def _show(text: str) -> str:
+    return repr(text if len(text) <= 40 else text[:37] + "...")
+
+
 def _type_error(message: str) -> Exception:
     """argparse's ArgumentTypeError: its message is the whole error line's."""
     import argparse  # only for a bad value
@@ -203,7 +207,7 @@ def positive_float(text: str) -> float:
     return value
 
 
-def _bounded_integer(text: str, low: int, high: int, what: str) -> int:
+def bounded_integer(text: str, low: int, high: int, what: str) -> int:
     """An ASCII integer in [low, high]; its digits are counted before int() sees them."""
     if not _INTEGER.fullmatch(text):
         raise _type_error(f"{_show(text)} is not an integer")
@@ -215,14 +219,9 @@ def _bounded_integer(text: str, low: int, high: int, what: str) -> int:
     raise _type_error(f"{_show(text)} is out of range: {what}")
 
 
-def seed(text: str) -> int:
-    """A random seed: an integer in [0, 2^64)."""
-    return _bounded_integer(text, 0, SEED_LIMIT - 1, "a seed is an integer in [0, 2^64)")
-
-
 def positive_int(text: str) -> int:
     """A count (an iteration limit): an integer in [1, 2^63)."""
-    return _bounded_integer(text, 1, MAX_COUNT, "expected an integer in [1, 2^63)")
+    return bounded_integer(text, 1, MAX_COUNT, "expected an integer in [1, 2^63)")
 
 
 # ----- vehicle flags ----------------------------------------------------------------
@@ -248,7 +247,16 @@ def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> 
     return Vehicle.SPACESHIP if args.grad else Vehicle.POINT
 
 
-# ----- the problem on stdin ---------------------------------------------------------
+def reject_vehicle_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> None:
+    """``-grad``, ``-ugrad``, ``-left`` name a grid vehicle: with a kinoplan problem
+    (its ``system`` line names the system) they are a usage error, exit 2."""
+    given = [flag for flag in ("-ugrad", "-grad", "-left") if getattr(args, flag[1:])]
+    if given:
+        parser.error(f"{' '.join(given)}: a kinoplan problem names its own system "
+                     "(the vehicle flags are for .sw problems)")
+
+
+# ----- the problem: on stdin, in either format -------------------------------------
 
 
 def _read_capped(stream, cap: int) -> bytearray | None:
@@ -314,12 +322,3 @@ def parse_any_problem(text: str):
 def is_kinoplan(problem) -> bool:
     """The problem is a ``kinoplan 1`` one (it carries its own system)."""
     return not isinstance(problem, Problem)
-
-
-def reject_vehicle_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> None:
-    """``-grad``, ``-ugrad``, ``-left`` name a grid vehicle: with a kinoplan problem
-    (its ``system`` line names the system) they are a usage error, exit 2."""
-    given = [flag for flag in ("-ugrad", "-grad", "-left") if getattr(args, flag[1:])]
-    if given:
-        parser.error(f"{' '.join(given)}: a kinoplan problem names its own system "
-                     "(the vehicle flags are for .sw problems)")
