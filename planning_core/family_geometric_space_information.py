@@ -21,7 +21,7 @@ from typing import Callable, Optional, Sequence
 from planning_core.family_space_information import FamilySpaceInformation
 from planning_core.interrupt import Stop
 from planning_core.kinoplan import body_tester, link_tests
-from planning_core.nearest.kdtree import space_metric
+from planning_core.kernels import mode as _mode
 from planning_core.worlds.body_motion import BodyMotionCheck
 from planning_core.worlds.link_tests import MotionCheck, sample_count
 
@@ -62,21 +62,24 @@ class FamilyGeometricSpaceInformation(FamilySpaceInformation):
         system = self.system
         self.wall_clearance = system.check
         """A motion cut short stops one check step before its first invalid sample."""
-        self.distance = system.distance
-        self.interpolate = self.space.interpolate  # the unrolled one, without a wrapper
+        metric = self.kernels["metric"]
+        # The metric's own methods (native calls in the compiled build), no wrapper.
+        self.distance, self.interpolate = metric.distance, metric.interpolate
         self.check = system.check
         self.dimension = self.space.dimension
         self.can_end_at = self.is_valid
         links, body = link_tests(system, problem.world), body_tester(system, problem.world)
         variables = self.space.variables
         if links is not None:  # the arm: its first_hit in one native call
-            metric = space_metric(self.space)
             self.first_hit = MotionCheck(links, metric, self.check, MotionHit).first_hit
+            self.kernels["motion check"] = "the links' (LinkTests), " + _mode(MotionCheck)
         elif body is not None and [v.angle for v in variables] == [False, False, True]:
             # a body at (x, y, theta): the same, by BodyMotionCheck
             self.first_hit = BodyMotionCheck(
                 body, [v.low for v in variables[:2]], [v.high for v in variables[:2]],
-                space_metric(self.space), self.check, MotionHit).first_hit
+                metric, self.check, MotionHit).first_hit
+            self.kernels["motion check"] = "the body's (BodyMotionCheck), " + _mode(BodyMotionCheck)
+            self.kernels["body test"] = body
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[MotionHit]:
         """The first invalid sample of the motion a -> b (``a`` itself not tested),

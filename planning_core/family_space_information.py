@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Optional, Sequence
 
 from planning_core.interrupt import Stop
+from planning_core.kernels import space_metric
 from planning_core.kinoplan import body_tester, invalid_reason, state_validator
 from planning_core.samplers import MotionSampler
 
@@ -32,6 +33,9 @@ class FamilySpaceInformation:
         self.world = problem.world
         self.space = system.space
         self.is_valid = state_validator(system, self.world)
+        self.kernels: dict[str, Any] = {"metric": space_metric(self.space)}
+        """The hot kernels' objects by name, as ``planning_core.kernels.describe`` names
+        their versions."""
         self._sample = self.space.sample_uniform
         self.sample_target = self._sample  # the method below, bound (the hot path)
 
@@ -92,16 +96,17 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
     def __init__(self, problem: Any,
                  options: FamilyControlOptions = FamilyControlOptions()) -> None:
         super().__init__(problem)
-        from planning_core.nearest.kdtree import space_metric
         system = self.system
         self.options = options
         self.controls_per_extension = options.controls_per_extension
         self.duration = (system.kmin, system.kmax)
         # The metric as the kd-tree measures (compiled: a native call, the same floats).
-        self.closeness = space_metric(self.space).distance
+        self.closeness = self.kernels["metric"].distance
         # The validity test fused into the integration loop (the hot path; the
         # generated class's methods, native calls in the compiled build).
-        fused = system.advancer(body_tester(system, self.world))
+        body = body_tester(system, self.world)
+        fused = system.integrator(body)
+        self.kernels.update({"integrator": fused, "body test": body})
         self.advance = fused.advance
         self.propagate_valid = fused.propagate_valid
         self.sample_control = system.sample_control

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Final
 
 if TYPE_CHECKING:  # typed for the compiled build; imported only where a family goal is made
-    from planning_core.nearest.kdtree import BoxMetric
+    from planning_core.nearest.metric import SpaceMetric
 
 GOAL_TOLERANCE: Final = 0.1
 PLANNER_MARGIN: Final = 1e-9
@@ -50,7 +50,7 @@ class MetricGoalTest:
     hair inside ``tolerance`` as :meth:`GoalRegion.reached` (``kinoplan.FamilyGoal``
     binds these two to itself)."""
 
-    def __init__(self, metric: BoxMetric, target: tuple[float, ...], tolerance: float) -> None:
+    def __init__(self, metric: SpaceMetric, target: tuple[float, ...], tolerance: float) -> None:
         self.metric = metric
         self.target = target
         self.within = tolerance * (1 - PLANNER_MARGIN)

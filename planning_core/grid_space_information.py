@@ -9,7 +9,7 @@ spaceships: a control held for one step of 20 slices, every slice's position
 checked, nearest by position, and what KPIECE1 and RG-RRT ask, set by
 :class:`GridControlOptions`.
 
-Compiled (mypyc, ``planning_core.compiled``): the grid planners ask these several
+Compiled (mypyc, ``rrt_startup.compiled``): the grid planners ask these several
 times per iteration, so their methods are native calls into the compiled world.
 """
 

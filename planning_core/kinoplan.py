@@ -45,7 +45,7 @@ class FamilyGoal:
     """A full state: the goal values at their indices, 0 elsewhere (unused by the metric)."""
 
     def __post_init__(self) -> None:
-        from planning_core.nearest.kdtree import space_metric
+        from planning_core.kernels import space_metric
         target = [0.0] * self.space.dimension
         for name, value in self.values:
             target[self.space.index(name)] = value
@@ -53,6 +53,7 @@ class FamilyGoal:
         # The planners ask these per motion: bound to the instance, native calls in
         # the compiled build (the methods below say the same).
         test = MetricGoalTest(space_metric(self.space), self.target, self.tolerance)
+        object.__setattr__(self, "metric", test.metric)  # (what -stats names)
         object.__setattr__(self, "distance", test.distance)
         object.__setattr__(self, "reached", test.reached)
 
@@ -157,7 +158,10 @@ def state_validator(system: FamilySystem,
     bounds, and what the system occupies (its body placed at (x, y, theta), or
     the arm's two links) inside the closed world box and off every closed
     obstacle. Without a world, or for the pendulum, the bounds alone. Bind it
-    once: propagate_while calls it after every slice."""
+    once: the validator calls it after every slice. (A kinodynamic system's is its
+    integrator's, the very test the planners' slice loop makes.)"""
+    if system.kinodynamic:
+        return system.integrator(body_tester(system, world)).valid
     in_bounds = system.in_bounds
     if world is None or not system.occupies:
         return in_bounds

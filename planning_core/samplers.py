@@ -1,4 +1,4 @@
-"""Uniform samples on plain floats, compiled (mypyc, ``planning_core.compiled``):
+"""Uniform samples on plain floats, compiled (mypyc, ``rrt_startup.compiled``):
 the kinoplan planners draw a target state and a control every iteration, KPIECE1 a
 motion of a cell by a normal draw and, on a family system, a random motion.
 

@@ -9,8 +9,9 @@ group does not count (the unicycle's ``v`` and ``omega`` under SPEC's default
 ``metric x,y 1 theta 0.5``).
 
 States stay bare tuples: nothing here allocates per state beyond the tuples it
-returns, and :meth:`StateSpace.distance` is compiled per space, because
-planners call it in their innermost loops.
+returns. The methods here are the readable definitions; planners' inner loops
+measure and interpolate through ``planning_core.kernels.space_metric(space)``, the
+same floats (a generated class for the spaces of the registered systems).
 """
 
 from __future__ import annotations
@@ -75,15 +76,12 @@ class StateSpace:
         object.__setattr__(self, "_plan", tuple(
             (indices, weight, tuple(variables[i].angle for i in indices))
             for indices, weight in groups))
-        # Shadow the reference methods below with the same arithmetic, unrolled.
-        object.__setattr__(self, "distance", compile_distance(variables, groups))
-        object.__setattr__(self, "interpolate", compile_interpolate(variables))
         if all(v.angle or (math.isfinite(v.low) and math.isfinite(v.high)) for v in variables):
             sampler = BoxSampler([v.low for v in variables], [v.high - v.low for v in variables])
             object.__setattr__(self, "sample_uniform", sampler.sample)
 
     def __reduce__(self):
-        # The compiled function cannot be pickled; rebuild it from the fields.
+        # The bound sampler cannot be pickled; rebuild it from the fields.
         return (type(self), (self.variables, self.groups))
 
     # ----- constructors -----
@@ -163,12 +161,8 @@ class StateSpace:
         return operator.itemgetter(*indices)
 
     def distance(self, a: State, b: State) -> float:
-        """The metric distance (SPEC 5.1/5.3).
-
-        This body is the readable reference; every instance replaces it with
-        :func:`compile_distance`'s unrolled equivalent (the same float
-        operations in the same order, so the same bits).
-        """
+        """The metric distance (SPEC 5.1/5.3): the definition, which the generated
+        metrics (``planning_core.kernels.space_metric``) equal bit for bit."""
         total = 0.0
         for indices, weight, angles in self._plan:
             if len(indices) == 1:
@@ -190,8 +184,7 @@ class StateSpace:
 
         Angles go the shorter way (``a + t * remainder(b - a, 2*pi)``, wrapped).
         Evaluated from the nearer end, so ``t = 0`` gives ``a`` and ``t = 1``
-        gives ``b`` exactly (angles wrapped). The readable reference: every instance
-        replaces it with :func:`compile_interpolate`'s unrolled equivalent.
+        gives ``b`` exactly (angles wrapped). The definition, as :meth:`distance`.
         """
         out = []
         for x, y, is_angle in zip(a, b, self._angles):
@@ -253,76 +246,3 @@ def _check(variables: tuple[Variable, ...], groups: tuple[Group, ...]) -> None:
             if i in seen:
                 raise ValueError(f"variable {variables[i].name} is in two metric groups")
             seen.add(i)
-
-
-def compile_distance(variables: Sequence[Variable],
-                     groups: Sequence[Group]) -> Callable[[State, State], float]:
-    """``distance(a, b)`` unrolled for these groups (faster than the loop: docs/parameter-history.md).
-
-    Generated source, as ``dataclasses`` generates ``__init__``: for SE(2) with
-    ``metric x,y 0.7 theta 0.3`` the body is ``d0 = b[0] - a[0]; d1 = ...;
-    d2 = _rem(b[2] - a[2], TAU); return W0 * _sqrt(d0 * d0 + d1 * d1) + W1 * abs(d2)``.
-    """
-    lines = ["def distance(a, b):", *distance_lines(variables, groups)]
-    namespace = {"_rem": math.remainder}
-    return compile_metric_sum("distance", lines, groups, "d", namespace)
-
-
-def distance_lines(variables: Sequence[Variable], groups: Sequence[Group]) -> list[str]:
-    """:func:`compile_distance`'s body before the sum: ``d{i}``, each variable's
-    difference (an angle's the shorter way round)."""
-    lines = []
-    for indices, _ in groups:
-        for i in indices:
-            diff = f"b[{i}] - a[{i}]"
-            lines.append(f"    d{i} = _rem({diff}, TAU)" if variables[i].angle else f"    d{i} = {diff}")
-    return lines
-
-
-def compile_interpolate(variables: Sequence[Variable]) -> Callable[[State, State, float], State]:
-    """``interpolate(a, b, t)`` unrolled for these variables: the reference method's
-    float operations in the same order (the same bits), without its loop, which
-    straight-line motions pay once per checked sample (docs/hot-paths.md)."""
-    def one(i: int, near: str) -> list[str]:
-        angle = variables[i].angle
-        diff = f"b[{i}] - a[{i}]"
-        value = f"a[{i}] + t * d" if near == "a" else f"b[{i}] - (1.0 - t) * d"
-        return [f"        d = _rem({diff}, TAU)" if angle else f"        d = {diff}",
-                f"        v{i} = _rem({value}, TAU)" if angle else f"        v{i} = {value}"]
-    n = len(variables)
-    lines = ["def interpolate(a, b, t):", "    if t < 0.5:"]
-    for i in range(n):
-        lines += one(i, "a")
-    lines.append("    else:")
-    for i in range(n):
-        lines += one(i, "b")
-    lines.append(f"    return ({''.join(f'v{i}, ' for i in range(n))})")
-    namespace = {"_rem": math.remainder, "TAU": TAU}
-    exec("\n".join(lines), namespace)  # noqa: S102 - source built from ints and names only
-    return namespace["interpolate"]
-
-
-def compile_metric_sum(name: str, lines: list[str], groups, prefix: str,
-                       namespace: dict) -> Callable:
-    """Finish generated source whose ``lines`` set ``{prefix}{i}`` for each
-    variable ``i`` with the metric's sum over groups, ``W0 * _sqrt(d0 * d0 + d1 *
-    d1) + W1 * abs(d2)``, then compile it and return the function ``name``. (Generated
-    once per space, as planners call it in inner loops; docs/parameter-history.md.)"""
-    namespace.update(_sqrt=math.sqrt, TAU=TAU)
-    namespace.update((f"W{k}", weight) for k, (_, weight) in enumerate(groups))
-    lines = lines + [f"    return {metric_sum(groups, prefix)}"]
-    exec("\n".join(lines), namespace)  # noqa: S102 - source built from ints and names only
-    return namespace[name]
-
-
-def metric_sum(groups, prefix: str) -> str:
-    """The metric's sum over groups of the per-variable terms ``{prefix}{i}``, with
-    the weights as names: ``W0 * _sqrt(d0 * d0 + d1 * d1) + W1 * abs(d2)``."""
-    terms = []
-    for k, (indices, _) in enumerate(groups):
-        if len(indices) == 1:
-            terms.append(f"W{k} * abs({prefix}{indices[0]})")
-        else:
-            squares = " + ".join(f"{prefix}{i} * {prefix}{i}" for i in indices)
-            terms.append(f"W{k} * _sqrt({squares})")
-    return " + ".join(terms) if terms else "0.0"

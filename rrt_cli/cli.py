@@ -200,6 +200,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.stats:
         say_stats(setup.si, result, f"planner={args.planner} vehicle={vehicle_name} "
                                     f"seed={run_seed}")
+        from planning_core.kernels import describe  # only with -stats: start-up
+        say(f"rrt_cli kernels: {describe(setup)}")
     if result.status is PlanStatus.OUT_OF_MEMORY:
         say(f"rrt_cli: out of memory: {result.message} (after "
             f"{stats.planning_seconds:.2f} s, seed {run_seed})")

@@ -35,6 +35,8 @@ MODULES = (
     "rrt_cli.planners.rgrrt",
     "rrt_cli.planners.blossom",
     "planning_core.nearest.kdtree",
+    "planning_core.nearest.metric",
+    "planning_core.generated_kernels",
     "planning_core.worlds.segment_tests",
     "planning_core.worlds.body_tests",
     "planning_core.worlds.link_tests",
@@ -240,7 +242,5 @@ def activate(build_dir: str = BUILD_DIR) -> str:
         folder = os.path.join(build_dir, *package.split("."))
         __import__(package)
         sys.modules[package].__path__.insert(0, folder)
-    from planning_core import compiled as core
-    core.generated_names = frozenset(sum(manifest.get("generated", []), []))
     state = f"compiled ({len(MODULES)} modules, {len(KERNELS)} C kernel, from {build_dir})"
     return state

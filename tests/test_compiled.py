@@ -167,32 +167,35 @@ def test_a_fresh_build_is_what_runs():
                for file in files), files
 
 
-def test_the_family_runs_its_generated_code_compiled():
-    """Every generated text the planners run (slice loops, kd-tree metrics) is in
-    the build, and a planner gets it (an edited generator without a rebuild would
-    run its texts interpreted); the compiled metric measures as the space does."""
+def test_the_family_runs_its_generated_kernels_compiled_and_stats_says_so():
+    """A planner's metric, goal metric and slice loop are the generated classes from the
+    build, and its body test the C kernel; the compiled metric measures as the space does;
+    -stats names them (interpreted: the same classes and the shapes' body test)."""
     fresh_or_skip()
     probe = ("from rrt_startup.compiled import activate\nactivate()\n"
-             "from planning_core import compiled\n"
-             "from planning_core.systems.family import generated_sources\n"
              "from cli_common import parse_any_problem\n"
-             "from planning_core.setups import kinoplan_setup\n"
-             "import sys\nmodules = [compiled.generated_module(t) for t in generated_sources()]\n"
-             "print(*(m.__file__ if m else 'missing' for m in modules))\n"
+             "from planning_core.setups import kinoplan_setup\nimport random, sys\n"
              "p = parse_any_problem(open('benchmarks/problems/family/car2-corridors.kp').read())\n"
-             "si = kinoplan_setup(p).si\n"
-             "print(sys.modules[type(si.advance.__self__).__module__].__file__)\n"
-             "from planning_core.nearest.kdtree import KDTree\nimport random\n"
-             "metric, rng = KDTree(si.space)._metric, random.Random(1)\n"
-             "print(sys.modules[type(metric).__module__].__file__)\n"
+             "setup = kinoplan_setup(p)\nsi = setup.si\n"
+             "for found in (si.advance.__self__, si.kernels['metric'], setup.pdef.goal.metric):\n"
+             "    print(sys.modules[type(found).__module__].__file__)\n"
+             "metric, rng = si.kernels['metric'], random.Random(1)\n"
              "pairs = [(si.sample_target(rng), si.sample_target(rng)) for _ in range(3000)]\n"
              "assert all(metric.distance(a, b).hex() == si.space.distance(a, b).hex()"
              " for a, b in pairs)\n")
     done = run_probe(probe)
     files = done.stdout.split()
-    assert len(files) > 1, done.stderr
-    assert all(file.startswith(compiled.BUILD_DIR) and file.endswith(compiled.extension_suffix())
-               for file in files), files
+    assert files == [os.path.join(compiled.BUILD_DIR, "planning_core", "generated_kernels"
+                                  + compiled.extension_suffix())] * 3, done.stderr
+    problem = (ROOT / "benchmarks" / "problems" / "family" / "car2-corridors.kp").read_text()
+    for disable, mode, body in (("", "compiled", "C kernel"), ("1", "interpreted", (
+            "reference (shapes), interpreted (the C kernel runs only with the compiled build)"))):
+        ran = subprocess.run([str(ROOT / "run.sh"), "-seed", "1", "-stats"], input=problem,
+                             capture_output=True, text=True, timeout=120,
+                             env=dict(os.environ, RRT_INTERPRETED=disable))
+        assert ran.stderr.splitlines()[-1] == (
+            f"rrt_cli kernels: metric=generated, {mode}; integrator=generated, {mode}; "
+            f"body test={body}; goal metric=generated, {mode}")
 
 
 def test_python_m_rrt_cli_runs_the_compiled_build_as_run_sh_does():
@@ -267,7 +270,7 @@ def test_the_compiled_body_test_answers_as_the_shapes_do():
              "from planning_core.worlds.continuous import ContinuousWorld\n"
              "from planning_core.worlds.shapes import body_polygon\n"
              "test = ContinuousWorld(None, ()).body_tester(body_polygon('rect', [2, 1]))\n"
-             "print(test.native_meets.__self__.__class__.__module__)\n")
+             "print(test.meets.__self__.__class__.__module__)\n")
     done = run_probe(probe, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == [os.path.join(compiled.BUILD_DIR, "planning_core", "worlds",
@@ -330,11 +333,12 @@ def test_a_damaged_build_runs_interpreted_after_one_line(tmp_path, damage, where
     done = launch(["./run.sh", "-seed", "1", "-stats"], copy, {compiled.DISABLE_VARIABLE: ""})
     assert done.returncode == 0, done.stderr
     assert done.stdout == interpreted_answer()
-    first, build, stats = done.stderr.splitlines()
+    first, build, stats, kernels = done.stderr.splitlines()
     assert first.startswith("rrt_cli: the compiled build is damaged: ")
     assert first.endswith("; running interpreted (./make.sh rebuilds it)")
     assert build == f"rrt_cli build: interpreted: {first[len('rrt_cli: '):].split('; ')[0]}"
     assert stats.startswith("rrt_cli stats: status=solved")
+    assert kernels == "rrt_cli kernels: segment test=GridWorld's own, interpreted"
 
 
 def same_size_edit(source: Path) -> None:

@@ -18,9 +18,6 @@ FLOORS = {"planning_core": 0, "cli_common": 1, "rrt_cli": 2, "validator": 2, "gr
 rrt_startup, what the launchers run first, names the compiled modules of every floor).
 A package's ``__main__`` (a process's entry, which nothing imports) may import
 rrt_startup to set the process up."""
-CIRCLE_PENDING = pytest.mark.xfail(
-    reason="planning_core/systems names its systems, and systems/family.py's "
-           "generated_sources asks the registry for them", strict=False)
 
 
 def _module_name(path) -> str:
@@ -120,9 +117,7 @@ def circles(package: str) -> list[list[str]]:
     return found
 
 
-@pytest.mark.parametrize("package", [pytest.param(name, marks=CIRCLE_PENDING)
-                                     if name == "planning_core" else name
-                                     for name in sorted(FLOORS)])
+@pytest.mark.parametrize("package", sorted(FLOORS))
 def test_no_circles(package):
     assert circles(package) == []
 

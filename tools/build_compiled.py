@@ -25,7 +25,6 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
-from planning_core.compiled import generated_name  # noqa: E402
 from rrt_startup import compiled  # noqa: E402
 
 CFLAGS = "-O2 -ffp-contract=off -fno-fast-math"
@@ -55,15 +54,12 @@ def _missing_tool() -> str | None:
     return None
 
 
-def _compile(work: Path) -> list[str]:
-    """Run mypyc and the C compiler with the sources in ROOT, output in ``work``;
-    returns the generated modules' names."""
+def _compile(work: Path) -> None:
+    """Run mypyc and the C compiler with the sources in ROOT, output in ``work``."""
     setup = work / "setup_hot.py"
     setup.write_text(_SETUP.format(mypy_flags=MYPY_FLAGS, group=compiled.GROUP,
                                    target=str(work / "c"), kernels=compiled.KERNELS))
-    generated = _write_generated(work / "generated")
-    paths = ",".join([compiled.source_path(module) for module in compiled.MODULES]
-                     + [str(path) for path in generated])
+    paths = ",".join(compiled.source_path(module) for module in compiled.MODULES)
     env = dict(os.environ, CFLAGS=CFLAGS, PYTHONHASHSEED="0")
     env.pop("PYTHONPATH", None)
     done = subprocess.run([sys.executable, str(setup), paths, "build_ext",
@@ -75,30 +71,16 @@ def _compile(work: Path) -> list[str]:
         errors = [line for line in lines if ": error:" in line]  # mypy's notes can be many
         tail = "\n".join((errors or lines)[-30:])
         raise RuntimeError(f"mypyc build failed:\n{tail}")
-    return [path.stem for path in generated]
 
 
-def _write_generated(folder: Path) -> list[Path]:
-    """The generated sources the planners run (family systems' fused slice loops),
-    each written as the top-level module its digest names (generated_name)."""
-    from planning_core.systems.family import generated_sources
-    folder.mkdir()
-    paths = []
-    for source in generated_sources():
-        path = folder / f"{generated_name(source)}.py"
-        path.write_text(source)
-        paths.append(path)
-    return paths
-
-
-def _manifest(sources: list[str], out: Path, generated: list[str]) -> str:
-    """The manifest's text: its format, the suffix, the flags, the generated
-    modules, each compiled source's line (as read before compiling: a source edited
-    meanwhile reads as changed) and each built file's, then its end."""
+def _manifest(sources: list[str], out: Path) -> str:
+    """The manifest's text: its format, the suffix, the flags, each compiled source's
+    line (as read before compiling: a source edited meanwhile reads as changed) and
+    each built file's, then its end."""
     built = sorted(str(path.relative_to(out)) for path in out.rglob("*")
                    if path.is_file() and path.name not in (compiled.MANIFEST, "build.log"))
     lines = [compiled.FORMAT, f"suffix {compiled.extension_suffix()}", f"cflags {CFLAGS}",
-             f"generated {' '.join(generated)}", *sources,
+             *sources,
              *(compiled.file_line(str(out), path) for path in built), compiled.END]
     return "\n".join(lines) + "\n"
 
@@ -109,10 +91,10 @@ def build(target: Path = Path(compiled.BUILD_DIR)) -> Path:
     target.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=target.parent, prefix=".tmp-") as temporary:
         work = Path(temporary)
-        generated = _compile(work)
+        _compile(work)
         out = work / "out"
         shutil.copy2(work / "build.log", out / "build.log")
-        (out / compiled.MANIFEST).write_text(_manifest(sources, out, generated))
+        (out / compiled.MANIFEST).write_text(_manifest(sources, out))
         old = work / "old"
         if target.exists():
             target.rename(old)

@@ -16,36 +16,28 @@ gives up a few ulps, ``slack``, for the rounding in ``b - a``). A node is
 skipped only when its bound is strictly greater than the worst distance kept,
 so an equal-distance point with a smaller index is never missed.
 
-Measured with ``python -m benchmarks.bench_kdtree``.
+It measures with the space's metric as ``planning_core.kernels.space_metric`` gives
+it (``nearest.metric.SpaceMetric``: distance, box bound, wrap). Measured with
+``python -m benchmarks.bench_kdtree``.
 """
 
 from __future__ import annotations
 
 import bisect
 import math
-from collections.abc import Callable, Sequence
-from types import SimpleNamespace
-from typing import Final, cast
+from collections.abc import Sequence
+from typing import Any, Final
 
-from planning_core import compiled
-from planning_core.angles import remainder
+from planning_core.kernels import space_metric
 from planning_core.nearest.index import NearestIndex
-from planning_core.spaces import (
-    TAU as _SPACES_TAU,
-    StateSpace,
-    compile_metric_sum,
-    distance_lines,
-    metric_sum,
-)
+from planning_core.nearest.metric import TAU as _METRIC_TAU
+from planning_core.nearest.metric import SpaceMetric
 
 State = tuple[float, ...]
 """As :data:`planning_core.spaces.State`; the compiled build does not follow imports into
 uncompiled modules, and a type from one is ``Any`` here (every ``key[i]`` a generic look-up)."""
-TAU: Final[float] = _SPACES_TAU
+TAU: Final[float] = _METRIC_TAU
 """2 pi, read natively in the compiled build (a global read from the module's dict else)."""
-
-COMPILED = not __file__.endswith(".py")
-"""True in the compiled build (mypyc): the kd-tree then measures with :class:`BoxMetric`."""
 
 
 class KDTree(NearestIndex):
@@ -59,7 +51,7 @@ class KDTree(NearestIndex):
     query's side checks its own box before its points are scanned.
     """
 
-    def __init__(self, space: StateSpace, leaf_capacity: int = 8):
+    def __init__(self, space: Any, leaf_capacity: int = 8):
         if leaf_capacity < 2:
             raise ValueError("leaf_capacity must be at least 2")
         self.space = space
@@ -67,7 +59,7 @@ class KDTree(NearestIndex):
         self._points: list[State] = []
         self._keys: list[State] = []  # the points with angles wrapped: boxes and splits use these
         # A native object in the compiled build, so that its methods are direct calls.
-        self._metric: BoxMetric = space_metric(space)
+        self._metric: SpaceMetric = space_metric(space)
         weight: dict[int, float] = {i: w for indices, w in space.groups for i in indices}
         self._dimension: int = space.dimension
         # Only axes the metric weighs are worth splitting on. (Typed: compiled, an
@@ -102,13 +94,7 @@ class KDTree(NearestIndex):
             return index
         axes = self._axes
         while True:
-            lo, hi = node.lo, node.hi
-            for i in axes:
-                v = key[i]
-                if v < lo[i]:
-                    lo[i] = v
-                elif v > hi[i]:
-                    hi[i] = v
+            _widen(node.lo, node.hi, key, axes)
             bucket = node.bucket
             if bucket is not None:
                 break
@@ -125,13 +111,7 @@ class KDTree(NearestIndex):
         keys, axes = self._keys, self._axes
         lo, hi = list(keys[indices[0]]), list(keys[indices[0]])
         for index in indices:
-            key = keys[index]
-            for i in axes:
-                v = key[i]
-                if v < lo[i]:
-                    lo[i] = v
-                elif v > hi[i]:
-                    hi[i] = v
+            _widen(lo, hi, keys[index], axes)
         return _Node(lo, hi, indices)
 
     def _split(self, node: _Node) -> None:
@@ -305,6 +285,16 @@ class _Node:
         self.bucket = bucket
 
 
+def _widen(lo: list[float], hi: list[float], key: State, axes: tuple[int, ...]) -> None:
+    """The box ``[lo, hi]`` widened on ``axes`` to hold ``key``."""
+    for i in axes:
+        v = key[i]
+        if v < lo[i]:
+            lo[i] = v
+        elif v > hi[i]:
+            hi[i] = v
+
+
 def _children(node: _Node, key: State) -> tuple[_Node, _Node]:
     """An inner node's children, the one on ``key``'s side of the split first."""
     left, right = node.left, node.right
@@ -312,24 +302,10 @@ def _children(node: _Node, key: State) -> tuple[_Node, _Node]:
     return (left, right) if key[node.axis] < node.split else (right, left)
 
 
-def space_metric(space: StateSpace) -> BoxMetric:
-    """The space's metric as the tree measures with it: compiled, the build's
-    ``Metric`` of the space (else :class:`BoxMetric`), a native object whose methods
-    are direct calls; interpreted, the space's generated functions."""
-    return _compiled_metric(space) if COMPILED else _generated_metric(space)
-
-
-def _generated_metric(space: StateSpace) -> BoxMetric:
-    """Interpreted, :class:`BoxMetric`'s three methods as the space's generated
-    functions, which run faster than its loops there (docs/hot-paths.md)."""
-    return cast(BoxMetric, SimpleNamespace(distance=space.distance,
-                                           bound=compile_box_bound(space), wrap=space.wrap))
-
-
 class LinearScan:
     """The baseline: every point's distance, the same interface and answers."""
 
-    def __init__(self, space: StateSpace):
+    def __init__(self, space: Any):
         self.space = space
         self._points: list[State] = []
         self._distance = space.distance
@@ -387,185 +363,3 @@ def _checked(state: Sequence[float], dimension: int) -> State:
         if math.isinf(v) or math.isnan(v):  # (isfinite is a generic call compiled)
             raise ValueError(f"a state with a non-finite value: {point!r}")
     return point
-
-
-class BoxMetric:
-    """``space.distance``, the box bound of :func:`compile_box_bound` and
-    ``space.wrap`` as loops over the metric's groups, with the same float
-    operations in the same order (so the same bits). Compiled (mypyc), a query
-    makes these calls several times faster than the generated functions, which
-    interpreted are the faster ones (docs/hot-paths.md)."""
-
-    def __init__(self, space: StateSpace) -> None:
-        self.order: list[int] = []
-        """The grouped axes, group after group."""
-        self.ends: list[int] = []
-        """Where each group's axes end in ``order``."""
-        self.weights: list[float] = []
-        self.single: list[bool] = []
-        """One axis: the group's term is ``W * abs(d)``, else ``W * sqrt(sum of d * d)``."""
-        for indices, weight in space.groups:
-            self.order.extend(indices)
-            self.ends.append(len(self.order))
-            self.weights.append(float(weight))
-            self.single.append(len(indices) == 1)
-        self.angle: list[bool] = [v.angle for v in space.variables]
-        self.any_angle: bool = any(self.angle)
-
-    def distance(self, a: tuple[float, ...], b: tuple[float, ...]) -> float:
-        total = 0.0
-        start = 0
-        for g in range(len(self.ends)):
-            end = self.ends[g]
-            squares = 0.0
-            d = 0.0
-            for j in range(start, end):
-                i = self.order[j]
-                d = b[i] - a[i]
-                if self.angle[i]:
-                    d = remainder(d, TAU)
-                squares += d * d
-            if self.single[g]:
-                total += self.weights[g] * abs(d)
-            else:
-                total += self.weights[g] * math.sqrt(squares)
-            start = end
-        return total
-
-    def bound(self, q: tuple[float, ...], lo: list[float], hi: list[float],
-              slack: float) -> float:
-        total = 0.0
-        start = 0
-        for g in range(len(self.ends)):
-            end = self.ends[g]
-            squares = 0.0
-            gap = 0.0
-            for j in range(start, end):
-                i = self.order[j]
-                gap = _angle_gap_of(q[i], lo[i], hi[i], slack) if self.angle[i] else \
-                    _real_gap_of(q[i], lo[i], hi[i])
-                squares += gap * gap
-            if self.single[g]:
-                total += self.weights[g] * abs(gap)
-            else:
-                total += self.weights[g] * math.sqrt(squares)
-            start = end
-        return total
-
-    def wrap(self, state: tuple[float, ...]) -> tuple[float, ...]:
-        if not self.any_angle:
-            return tuple(state)
-        angle = self.angle
-        return tuple([remainder(state[i], TAU) if angle[i] else state[i]
-                      for i in range(len(state))])
-
-
-def _real_gap_of(v: float, lo: float, hi: float) -> float:
-    """How far ``v`` lies outside ``[lo, hi]`` (:func:`_real_gap`'s source)."""
-    g = lo - v
-    if g < 0.0:
-        g = v - hi
-        if g < 0.0:
-            g = 0.0
-    return g
-
-
-def _angle_gap_of(v: float, lo: float, hi: float, slack: float) -> float:
-    """The shorter way round from ``v`` to the arc ``[lo, hi]``, less ``slack``
-    (:func:`_angle_gap`'s source)."""
-    if v < lo:
-        g = lo - v
-        u = v + TAU - hi
-    elif v > hi:
-        g = v - hi
-        u = lo + TAU - v
-    else:
-        g = u = 0.0
-    if u < g:
-        g = u
-    return g - slack if g > slack else 0.0
-
-
-def compile_box_bound(space: StateSpace) -> Callable[[State, list, list, float], float]:
-    """``bound(key, lo, hi, slack)``: a lower bound of ``space.distance`` from
-    a query (``key``, angles wrapped) to any point in the box ``[lo, hi]``.
-
-    Generated like :func:`planning_core.spaces.compile_distance` and shaped
-    like it term by term (a one-axis group ``W * gap``, others ``W *
-    sqrt(sum of squares)``), so float rounding keeps bound <= distance.
-    """
-    lines = ["def bound(q, lo, hi, slack):", *_bound_lines(space)]
-    return compile_metric_sum("bound", lines, space.groups, "g", {})
-
-
-def _bound_lines(space: StateSpace) -> list[str]:
-    """:func:`compile_box_bound`'s body before the sum: ``g{i}``, each axis's gap."""
-    lines: list[str] = []
-    for indices, _ in space.groups:
-        for i in indices:
-            lines += _angle_gap(i) if space.variables[i].angle else _real_gap(i)
-    return lines
-
-
-def metric_source(space: StateSpace) -> str:
-    """The text of a module whose ``Metric(space)``, a :class:`BoxMetric`, measures
-    and bounds with the generated functions' lines (the same float operations), the
-    weights its fields: the compiled build compiles the texts of the registered
-    systems' spaces, and a compiled kd-tree uses one when the build holds its text
-    (unrolled, they beat BoxMetric's loops; docs/hot-paths.md)."""
-    weights = [f"W{k}" for k in range(len(space.groups))]
-    fields = [f"        self.{w}: float = space.groups[{k}][1]" for k, w in enumerate(weights)]
-    load = [f"        {name} = self.{name}" for name in [*weights, "TAU"]]
-    indent = ["    " + line for line in distance_lines(space.variables, space.groups)]
-    gaps = ["    " + line for line in _bound_lines(space)]
-    return "\n".join([
-        "from __future__ import annotations",
-        "from math import pi, sqrt as _sqrt",
-        "from planning_core.angles import remainder as _rem",
-        "from typing import Any",
-        "from planning_core.nearest.kdtree import BoxMetric",
-        "", "", "class Metric(BoxMetric):",
-        "    def __init__(self, space: Any) -> None:",
-        "        super().__init__(space)", *fields, "        self.TAU: float = 2.0 * pi",
-        "",
-        "    def distance(self, a: tuple[float, ...], b: tuple[float, ...]) -> float:",
-        *load, *indent, f"        return {metric_sum(space.groups, 'd')}",
-        "",
-        "    def bound(self, q: tuple[float, ...], lo: list[float], hi: list[float],",
-        "              slack: float) -> float:",
-        *load, *gaps, f"        return {metric_sum(space.groups, 'g')}", ""])
-
-
-def _compiled_metric(space: StateSpace) -> BoxMetric:
-    """The build's ``Metric`` of this space's :func:`metric_source`, else a BoxMetric."""
-    module = compiled.generated_module(metric_source(space))
-    return BoxMetric(space) if module is None else module.Metric(space)
-
-
-def _real_gap(i: int) -> list[str]:
-    """Source for ``g{i}``: how far ``q[i]`` lies outside ``[lo[i], hi[i]]``."""
-    return [f"    v = q[{i}]",
-            f"    g{i} = lo[{i}] - v",
-            f"    if g{i} < 0.0:",
-            f"        g{i} = v - hi[{i}]",
-            f"        if g{i} < 0.0:",
-            f"            g{i} = 0.0"]
-
-
-def _angle_gap(i: int) -> list[str]:
-    """Source for ``g{i}``: the shorter way round the circle from the wrapped
-    angle ``q[i]`` to the arc ``[lo[i], hi[i]]``, less ``slack``."""
-    return [f"    v = q[{i}]",
-            f"    l = lo[{i}]",
-            f"    h = hi[{i}]",
-            "    if v < l:",
-            "        g = l - v",
-            "        u = v + TAU - h",
-            "    elif v > h:",
-            "        g = v - h",
-            "        u = l + TAU - v",
-            "    else:",
-            "        g = u = 0.0",
-            "    if u < g:",
-            "        g = u",
-            f"    g{i} = g - slack if g > slack else 0.0"]

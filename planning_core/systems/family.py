@@ -20,13 +20,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar, Optional
 
-from planning_core.integrators import (
-    Dynamics,
-    advance_class,
-    advance_source,
-    compile_propagator,
-    slice_count,
-)
+from planning_core import kernels
+from planning_core.integrators import Dynamics, check_scheme, slice_count
 from planning_core.samplers import BoxSampler, ControlSampler
 from planning_core.spaces import StateSpace, Variable
 from planning_core.worlds.shapes import ConvexPolygon, Rect, body_polygon, place
@@ -110,13 +105,12 @@ class FamilySystem:
             self._set("body", body_polygon(*d.body))
         self._check_params()
         self._set("space", StateSpace.from_metric(self.variables(), self.metric))
-        self._set("in_bounds", self._compile_in_bounds())
 
     def _set(self, name: str, value: Any) -> None:
         object.__setattr__(self, name, value)
 
     def __reduce__(self):
-        # The compiled functions cannot be pickled: rebuild them from the fields.
+        # The bound samplers and integrator cannot be pickled: rebuild them from the fields.
         return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
 
     def _check_params(self) -> None:
@@ -180,33 +174,10 @@ class FamilySystem:
                 return f"{v.name} = {value!r} is outside its bound [{v.low:g}, {v.high:g}]"
         return None
 
-    def bounds_condition(self) -> str:
-        """Source of :meth:`in_bounds`'s test over the state names: every value
-        finite (``v - v == 0.0``), every non-angle within its closed bounds."""
-        terms = []
-        for v in self.space.variables:
-            finite_bounds = not v.angle and math.isfinite(v.low) and math.isfinite(v.high)
-            if not v.angle and v.low > -math.inf:
-                terms.append(f"{v.low!r} <= {v.name}")
-            if not v.angle and v.high < math.inf:
-                terms.append(f"{v.name} <= {v.high!r}")
-            if not finite_bounds:
-                terms.append(f"{v.name} - {v.name} == 0.0")
-        return " and ".join(terms) or "True"
-
     def in_bounds(self, state: Sequence[float]) -> bool:
-        """``space.satisfies_bounds``; each instance shadows this with its compiled
-        :meth:`bounds_condition` (the state validator's first test, per slice)."""
+        """Every value finite, every non-angle within its closed bounds
+        (``space.satisfies_bounds``)."""
         return self.space.satisfies_bounds(state)
-
-    def _compile_in_bounds(self) -> Callable[[Sequence[float]], bool]:
-        source = (f"def in_bounds(state):\n"
-                  f"    if len(state) != {len(self.state_names)}:\n        return False\n"
-                  f"    {', '.join(self.state_names)}, = state\n"
-                  f"    return {self.bounds_condition()}")
-        namespace: dict = {"__builtins__": {"len": len}}
-        exec(source, namespace)  # noqa: S102 - source built from names and floats
-        return namespace["in_bounds"]
 
     def footprint(self, state: Sequence[float]) -> ConvexPolygon:
         """The body placed at the state's (x, y, theta)."""
@@ -260,11 +231,12 @@ class KinodynamicFamily(FamilySystem):
         self._set("sample_values", values.sample)
         self._set("control_sampler", ControlSampler(values, self.kmin, self.kmax))
         self._set("sample_control", self.control_sampler.sample)
-        dynamics = Dynamics(self.state_names, held, self.rates,
-                            tuple(n in self.angle_names for n in self.state_names),
-                            tuple((p, getattr(self, p)) for p in self.params))
-        self._set("_dynamics", dynamics)
-        self._set("_propagate", compile_propagator(dynamics, self.scheme, float(self.dt)))
+        check_scheme(self.scheme, float(self.dt))
+        self._set("dynamics", Dynamics(self.state_names, held, self.rates,
+                                       tuple(n in self.angle_names for n in self.state_names),
+                                       tuple((p, getattr(self, p)) for p in self.params)))
+        # The slices without a valid-state test: what propagate and slice_states run.
+        self._set("_slicer", kernels.integrator(self))
 
     def _check_controls(self) -> None:
         if len(self.controls) != len(self.control_names) - 1:
@@ -322,20 +294,22 @@ class KinodynamicFamily(FamilySystem):
                         state_valid: Optional[Callable[[State], bool]] = None,
                         slices_out: Optional[list] = None) -> Optional[State]:
         """The state after K slices; None at the first slice ``state_valid``
-        rejects (``state`` itself is not tested). ``slices_out`` gets each slice."""
-        return self._propagate(state, control, state_valid, slices_out)
+        rejects (``state`` itself is not tested). ``slices_out`` gets each slice
+        that passed."""
+        for sliced in self.slice_states(state, control):
+            if state_valid is not None and not state_valid(sliced):
+                return None
+            if slices_out is not None:
+                slices_out.append(sliced)
+            state = sliced
+        return tuple(state)
 
-    def advancer(self, body: Any = None):
-        """The object whose ``advance(state, control, kmax) -> (state, k)`` and
-        ``propagate_valid(state, control)`` (integrators.advance_source) have the state
-        validator's test fused in: finite, the bounds, then ``body.free(x, y, theta)``
-        when a ``body_tests.BodyTest`` is given."""
-        free_args = None if body is None else self.state_names[:3]
-        advance = advance_class(advance_source(self._dynamics, self.scheme, free_args))
-        variables = self.space.variables
-        return advance(float(self.dt), [float(value) for _, value in self._dynamics.constants],
-                       [v.low for v in variables], [v.high for v in variables],
-                       body)
+    def integrator(self, body: Any = None) -> Any:
+        """The slice loop with the valid-state test fused in (``kernels.integrator``):
+        its ``advance(state, control, kmax) -> (state, k)``, ``propagate_valid(state,
+        control)`` and ``valid(state)`` test every slice for finite values, the bounds,
+        then ``body.free(x, y, theta)`` when a ``body_tests.BodyTest`` is given."""
+        return kernels.integrator(self, body)
 
     def reachable_controls(self, levels: int, k: int) -> list[tuple]:
         """RG-RRT's fixed reachable set: every combination of ``levels`` evenly
@@ -362,12 +336,12 @@ class KinodynamicFamily(FamilySystem):
 
     def propagate(self, state: Sequence[float], control: Sequence[float]) -> State:
         """The state after K slices (no validity test)."""
-        return self._propagate(state, control)
+        return self._slicer.slices(state, control, slice_count(control[-1]), None)
 
     def slice_states(self, state: Sequence[float], control: Sequence[float]) -> list[State]:
         """The state after each of the K slices, the last one included."""
         out: list[State] = []
-        self._propagate(state, control, None, out)
+        self._slicer.slices(state, control, slice_count(control[-1]), out)
         return out
 
 
@@ -391,9 +365,6 @@ class GeometricFamily(FamilySystem):
         if not (math.isfinite(self.check) and self.check > 0.0):
             raise ValueError(f"{self.name}: check step must be a finite number > 0, "
                              f"got {self.check!r}")
-        # Shadow the methods below with the space's own (the compiled metric), one call less.
-        self._set("distance", self.space.distance)
-        self._set("interpolate", self.space.interpolate)
 
     @classmethod
     def _more_fields(cls, *, check=None, **more) -> dict:
@@ -421,23 +392,3 @@ class GeometricFamily(FamilySystem):
         n = max(1, math.ceil(span))
         interpolate = self.space.interpolate
         return [interpolate(a, b, i / n) for i in range(n + 1)]
-
-
-def generated_sources() -> list[str]:
-    """The generated texts the planners run for every registered family system:
-    the kinodynamic ones' fused slice loops (:meth:`KinodynamicFamily.advancer`, each
-    scheme, with and without a body) and every system's kd-tree metric
-    (``kdtree.metric_source``): what the compiled build compiles (tools/build_compiled.py)."""
-    from planning_core.integrators import SCHEMES
-    from planning_core.nearest.kdtree import metric_source
-    from planning_core.systems import SYSTEM_MODULES, load
-    texts = []
-    for name in SYSTEM_MODULES:
-        system = load(name)
-        if isinstance(system, FamilySystem):
-            texts.append(metric_source(system.space))
-        if isinstance(system, KinodynamicFamily):
-            bodies = [None] + ([system.state_names[:3]] if system.occupies == "body" else [])
-            texts += [advance_source(system._dynamics, scheme, free_args)
-                      for scheme in SCHEMES for free_args in bodies]
-    return list(dict.fromkeys(texts))  # systems may share a text

@@ -3,11 +3,11 @@
 
    BodyKernel(body_xs, body_ys, has_box, box, kinds, boxes, xs, ys, discs) binds a
    body's points and a world's box and obstacles (segment_tests.Obstacles) as C
-   arrays. meets(x, y, theta) answers as BodyTest.meets in body_tests.py, its
-   reference: the body's points rotated by theta and moved to (x, y), then outside
-   the closed box, or meeting a closed obstacle (bounding boxes first; a disc by
-   its nearest edge, a rect by the body's edge lines, a polygon by both polygons'
-   edge lines). clearance(x, y) is body_tests.clearance, Python's math.hypot
+   arrays. meets(x, y, theta) answers as its reference, the shapes' test
+   ContinuousWorld.first_obstacle(place(body, x, y, theta)) is not None: the body's
+   points rotated by theta and moved to (x, y), then outside the closed box, or
+   meeting a closed obstacle (bounding boxes first; a disc by its nearest edge, a
+   rect by the body's edge lines, a polygon by both polygons' edge lines). clearance(x, y) is body_tests.clearance, Python's math.hypot
    called where that takes one. The same float operations in the same order (no
    fused multiply-adds: the build pins -ffp-contract=off), so the same poses meet
    and the same clearances come out; placed(x, y, theta) returns the placed points,
@@ -154,7 +154,7 @@ static int meets_obstacle(BodyKernel *k, Py_ssize_t i)
     }
 }
 
-/* BodyTest.meets: placed at (x, y, theta), the body leaves the box or meets an obstacle. */
+/* Placed at (x, y, theta), the body leaves the box or meets an obstacle. */
 static int meets(BodyKernel *k, double x, double y, double theta)
 {
     double x0, x1, y0, y1;
@@ -473,7 +473,7 @@ static PyTypeObject BodyKernelType = {
 
 static struct PyModuleDef kernel_module = {
     PyModuleDef_HEAD_INIT, "_body_kernel",
-    "The body test's C kernel (reference: planning_core.worlds.body_tests.BodyTest.meets).",
+    "The body test's C kernel (reference: the shapes' ContinuousWorld.first_obstacle).",
     -1, NULL,
 };
 

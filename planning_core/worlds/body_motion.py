@@ -2,7 +2,7 @@
 
 The interpreted way tests each sample through three calls (the space's
 interpolation, the state validator, the body test); compiled (mypyc,
-``planning_core.compiled``), :meth:`BodyMotionCheck.first_invalid` runs the
+``rrt_startup.compiled``), :meth:`BodyMotionCheck.first_invalid` runs the
 whole loop on plain floats with the same float operations as
 ``StateSpace.interpolate``, ``FamilySystem.in_bounds`` and
 :meth:`~planning_core.worlds.body_tests.BodyTest.free`, so the same samples come
@@ -15,7 +15,7 @@ import math
 from typing import Any, Final, Sequence
 
 from planning_core.angles import remainder
-from planning_core.nearest.kdtree import BoxMetric
+from planning_core.nearest.metric import SpaceMetric
 from planning_core.worlds.body_tests import BodyTest
 from planning_core.worlds.link_tests import sample_count
 
@@ -27,7 +27,7 @@ class BodyMotionCheck:
     theta an angle; the sample count by the space's metric (the kd-tree's)."""
 
     def __init__(self, body: BodyTest, lows: Sequence[float], highs: Sequence[float],
-                 metric: BoxMetric, check: float, hit: Any):
+                 metric: SpaceMetric, check: float, hit: Any):
         self.body = body
         self.x_low, self.y_low = float(lows[0]), float(lows[1])
         self.x_high, self.y_high = float(highs[0]), float(highs[1])

@@ -3,10 +3,14 @@
 Placing a body's points, the polygon-against-disc test and a point's distance to
 a rect or disc (a polygon's: ``segment_tests.polygon_distance``) live here as
 plain-float functions that :mod:`planning_core.worlds.shapes` imports (one copy),
-with :class:`BodyTest`,
-the per-slice collision test of every family car, so that it runs compiled
-(mypyc, ``planning_core.compiled``), and :func:`clearance`, a point's distance to
-a world's :class:`~planning_core.worlds.segment_tests.Obstacles`.
+with :class:`BodyTest`, the per-slice collision test of every family car (compiled,
+mypyc), and :func:`clearance`, a point's distance to a world's
+:class:`~planning_core.worlds.segment_tests.Obstacles`.
+
+The full test, whether the placed body leaves the box or meets an obstacle, has
+one reference, the shapes' (``ContinuousWorld.polygon_free(place(...))``), and one
+fast version, the C kernel ``body_kernel.c`` (the same floats; built with the
+compiled modules and used with them); :class:`BodyTest` is given the one to call.
 """
 
 from __future__ import annotations
@@ -14,14 +18,7 @@ from __future__ import annotations
 import math
 from typing import Any, Final
 
-from planning_core.worlds.segment_tests import (
-    DISC,
-    RECT,
-    Obstacles,
-    edge_separates,
-    near_segment,
-    polygon_distance,
-)
+from planning_core.worlds.segment_tests import DISC, RECT, Obstacles, near_segment, polygon_distance
 
 BBox = tuple[float, float, float, float]  # xmin, ymin, xmax, ymax (closed)
 
@@ -84,17 +81,6 @@ def rect_distance(rect: BBox, x: float, y: float) -> float:
     return math.hypot(max(max(x0 - x, 0.0), x - x1), max(max(y0 - y, 0.0), y - y1))
 
 
-def _extent(values: list[float]) -> tuple[float, float]:
-    """``(min(values), max(values))``, compared as the builtins do (a NaN kept where they keep it)."""
-    lo = hi = values[0]
-    for v in values:
-        if v < lo:
-            lo = v
-        if v > hi:
-            hi = v
-    return lo, hi
-
-
 def clearance(world: Obstacles, x: float, y: float) -> float:
     """Distance from the point to the world's nearest obstacle or box side (0 when
     it is in an obstacle or outside the box)."""
@@ -137,17 +123,11 @@ class BodyTest:
     per-slice collision test of a car, with the free disc it remembers."""
 
     def __init__(self, world: Obstacles, body_xs: list[float], body_ys: list[float],
-                 margin: float):
+                 margin: float, meets: Any):
         self.world = world
         self.body_xs = body_xs
         self.body_ys = body_ys
         """The x and the y coordinates of the body's points in its own frame (CCW)."""
-        self.box: BBox = world.box
-        self.kinds = world.kinds
-        self.boxes = world.boxes
-        self.xs = world.xs
-        self.ys = world.ys
-        self.discs = world.discs
         self.margin = margin
         """The body's radius plus a margin far above rounding."""
         self.disc_x = math.nan
@@ -159,23 +139,23 @@ class BodyTest:
         self.last_gap = 0.0
         """Where the clearance was last measured, and it."""
         kernel = native_kernel(world, body_xs, body_ys)
-        self.native_meets: Any = None if kernel is None else kernel.meets
+        self.native = kernel is not None
+        """The C kernel is in use (the compiled build is)."""
+        self.meets: Any = meets if kernel is None else kernel.meets
+        """``meets(x, y, theta)``: the body placed there leaves the box or meets an
+        obstacle. The C kernel's where the compiled build is in use, else ``meets``,
+        the reference."""
         self.native_clearance: Any = None if kernel is None else kernel.clearance
-        """The C kernel's :meth:`meets` and :func:`clearance` where the compiled build
-        is in use, else None."""
+        """The C kernel's :func:`clearance` where the compiled build is in use, else None."""
 
     def free(self, x: float, y: float, theta: float) -> bool:
-        """``polygon_free(place(body, x, y, theta))`` by the same float operations,
-        or True at once inside the free disc (see ``ContinuousWorld.body_test``) for
-        a finite angle; a free pose at an infinite (x, y) (no box) leaves no disc."""
+        """``not meets(x, y, theta)``, or True at once inside the free disc (see
+        ``ContinuousWorld.body_test``) for a finite angle; a free pose at an infinite
+        (x, y) (no box) leaves no disc."""
         dx, dy = x - self.disc_x, y - self.disc_y
         if dx * dx + dy * dy <= self.disc_r2 and theta - theta == 0.0:  # a finite angle
             return True
-        native = self.native_meets
-        if native is not None:
-            if native(x, y, theta):
-                return False
-        elif self.meets(x, y, theta):
+        if self.meets(x, y, theta):
             return False
         if not (abs(x) < math.inf and abs(y) < math.inf):
             return True  # free far out (no box): no disc centred there
@@ -191,35 +171,3 @@ class BodyTest:
         if gap > margin:
             self.disc_x, self.disc_y, self.disc_r2 = x, y, (gap - margin) ** 2
         return True
-
-    def meets(self, x: float, y: float, theta: float) -> bool:
-        """The body placed at (x, y, theta) leaves the box or meets an obstacle: the
-        reference of the C kernel (``body_kernel.c``) that the compiled build uses."""
-        xs, ys = placed_coordinates(self.body_xs, self.body_ys, x, y, theta)
-        x0, x1 = _extent(xs)
-        y0, y1 = _extent(ys)
-        box = self.box
-        if not (x0 <= x1 and y0 <= y1 and box[0] <= x0 and x1 <= box[2]
-                and box[1] <= y0 and y1 <= box[3]):
-            return True
-        return self._meets_any(xs, ys, x0, y0, x1, y1)
-
-    def _meets_any(self, xs: list[float], ys: list[float],
-                   x0: float, y0: float, x1: float, y1: float) -> bool:
-        """The placed points' polygon meets some obstacle (bounding boxes first)."""
-        for i in range(len(self.kinds)):
-            ox0, oy0, ox1, oy1 = self.boxes[i]
-            if ox0 <= x1 and x0 <= ox1 and oy0 <= y1 and y0 <= oy1:
-                if self._meets(i, xs, ys):
-                    return True
-        return False
-
-    def _meets(self, i: int, xs: list[float], ys: list[float]) -> bool:
-        kind = self.kinds[i]
-        if kind == DISC:
-            cx, cy, r = self.discs[i]
-            return poly_disc(xs, ys, cx, cy, r)
-        oxs, oys = self.xs[i], self.ys[i]
-        if kind == RECT:  # the rect's axes: the bounding boxes already overlap
-            return not edge_separates(xs, ys, oxs, oys)
-        return not (edge_separates(xs, ys, oxs, oys) or edge_separates(oxs, oys, xs, ys))

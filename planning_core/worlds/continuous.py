@@ -24,6 +24,7 @@ from planning_core.worlds.shapes import (
     Shape,
     inside_box,
     pair_test,
+    place,
     point_in,
 )
 
@@ -160,7 +161,10 @@ class ContinuousWorld:
         :meth:`body_test` (the family's compiled slice loop calls its ``free``)."""
         radius = max(math.hypot(px, py) for px, py in body.points)
         margin = radius + CLEARANCE_MARGIN * max(self.scale(), radius)
-        return BodyTest(self._bound, list(body.xs), list(body.ys), margin)
+
+        def meets(x: float, y: float, theta: float) -> bool:  # the reference
+            return self.first_obstacle(place(body, x, y, theta)) is not None
+        return BodyTest(self._bound, list(body.xs), list(body.ys), margin, meets)
 
     def link_tests(self, base_x: float, base_y: float, l1: float, l2: float,
                    lows: Sequence[float], highs: Sequence[float], margin: float) -> LinkTests:

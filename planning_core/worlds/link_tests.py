@@ -4,7 +4,7 @@
 :class:`~planning_core.worlds.segment_tests.SegmentTests` once, so that the arm's
 hot path (is a configuration valid? how many samples of a straight motion are
 surely valid? where does a motion first fail?) runs as native calls in the
-compiled build (mypyc, ``planning_core.compiled``), the joints computed once per
+compiled build (mypyc, ``rrt_startup.compiled``), the joints computed once per
 sample. :func:`joints` is the single copy of the arm's forward kinematics
 (``Arm2.joints`` calls it).
 """
@@ -15,7 +15,7 @@ import math
 from typing import Any, Final, Sequence
 
 from planning_core.angles import remainder
-from planning_core.nearest.kdtree import BoxMetric
+from planning_core.nearest.metric import SpaceMetric
 from planning_core.worlds.body_tests import SNAP
 from planning_core.worlds.segment_tests import SegmentTests
 
@@ -147,7 +147,7 @@ class MotionCheck:
     """The arm's ``first_hit`` in one native call: the motion's sample count by the
     space's metric (the kd-tree's), then :meth:`LinkTests.first_invalid`."""
 
-    def __init__(self, links: LinkTests, metric: BoxMetric, check: float, hit: Any):
+    def __init__(self, links: LinkTests, metric: SpaceMetric, check: float, hit: Any):
         self.links = links
         self.metric = metric
         self.check = check

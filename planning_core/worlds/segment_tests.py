@@ -3,7 +3,7 @@
 The primitive predicates that :mod:`planning_core.worlds.shapes` builds its pair
 tests from live here, with the segment-against-obstacle tests themselves, so
 that the arm's hot path (a link free? how far from everything?) runs compiled
-(mypyc, ``planning_core.compiled``) from the same single copy the shapes use.
+(mypyc, ``rrt_startup.compiled``) from the same single copy the shapes use.
 :class:`SegmentTests` binds a world's box and obstacles once. A polygon (or a
 rect's corners, a segment's ends, a point) is passed as two ``list[float]``, its
 points' x and y coordinates, which compiled loops read natively.

@@ -99,13 +99,17 @@ def test_help_lists_every_flag():
         assert flag.encode() in done.stdout
 
 
-def test_stats_line_is_key_value_on_stderr():
-    done = run_planner(["-seed", "2", "-stats"], SPACE0.read_text())
+def test_stats_line_is_key_value_on_stderr_then_the_kernels_that_ran():
+    done = run_planner(["-seed", "2", "-stats"], SPACE0.read_text(), interpreted=True)
     assert done.returncode == 0
-    line = done.stderr.decode().strip()
+    line, kernels = done.stderr.decode().splitlines()
+    assert line.startswith("rrt_cli stats: ")
     fields = dict(item.split("=", 1) for item in line.split(": ", 1)[1].split())
+    assert list(fields) == ["status", "planner", "vehicle", "seed", "iterations", "tree_nodes",
+                            "planning_seconds"]
     assert fields["status"] == "solved" and fields["seed"] == "2"
     assert int(fields["tree_nodes"]) >= 2 and float(fields["planning_seconds"]) >= 0
+    assert kernels == "rrt_cli kernels: segment test=GridWorld's own, interpreted"
 
 
 def test_start_within_goal_tolerance_is_a_one_line_trajectory():

@@ -12,9 +12,10 @@ import random
 
 import pytest
 
+from planning_core import kernels
 from planning_core.nearest import kdtree
-from planning_core.nearest.kdtree import (BoxMetric, KDTree, LinearScan, angle_slack,
-                                            compile_box_bound)
+from planning_core.nearest.kdtree import KDTree, LinearScan, angle_slack
+from planning_core.nearest.metric import SpaceMetric
 from planning_core.spaces import StateSpace, Variable
 
 PI = math.pi
@@ -156,25 +157,15 @@ def test_large_unwrapped_angles_stay_exact():
         assert tree.k_nearest(q, 5) == scan.k_nearest(q, 5)
 
 
-@pytest.mark.parametrize("name", sorted(SPACES))
-def test_the_compiled_builds_metric_is_the_generated_one_bit_for_bit(name):
-    space, rng = SPACES[name](), random.Random(len(name))
-    metric, bound = BoxMetric(space), compile_box_bound(space)
-    points = []
-    for _ in range(3000):
-        a, b = make_state(space, rng, points), make_state(space, rng, points)
-        points.append(a)
-        assert metric.distance(a, b).hex() == space.distance(a, b).hex()
-        assert metric.wrap(a) == space.wrap(a)
-        lo = [min(c) for c in zip(space.wrap(a), space.wrap(b))]
-        hi = [max(c) for c in zip(space.wrap(a), space.wrap(b))]
-        q, slack = space.wrap(make_state(space, rng, points)), rng.choice((0.0, 1e-12))
-        assert metric.bound(q, lo, hi, slack).hex() == bound(q, lo, hi, slack).hex()
+def test_the_spaces_here_measure_with_generated_metrics_and_the_reference():
+    measured = {name: type(kernels.space_metric(SPACES[name]())) for name in SPACES}
+    assert measured["R2"] is measured["trailer5"] is SpaceMetric   # shapes of no system
+    assert measured["SE2"].__module__ == measured["unicycle5"].__module__ == kernels.GENERATED
 
 
-@pytest.mark.parametrize("name", sorted(SPACES))
-def test_equals_linear_scan_measuring_as_the_compiled_build(name, monkeypatch):
-    monkeypatch.setattr(kdtree, "COMPILED", not kdtree.COMPILED)
+@pytest.mark.parametrize("name", ["SE2", "unicycle5"])
+def test_equals_linear_scan_measuring_with_the_reference_metric(name, monkeypatch):
+    monkeypatch.setattr(kdtree, "space_metric", SpaceMetric)
     compare(SPACES[name](), n_points=300, n_queries=300, leaf_capacity=8, seed=len(name),
             scan_every=3)
 
@@ -182,15 +173,16 @@ def test_equals_linear_scan_measuring_as_the_compiled_build(name, monkeypatch):
 def test_box_bound_never_exceeds_a_distance_inside():
     rng = random.Random(4)
     for space in (se2(), trailer()):
-        bound = compile_box_bound(space)
+        bounds = (kernels.space_metric(space).bound, SpaceMetric(space).bound)
         for _ in range(3000):
             points = [space.wrap(make_state(space, rng, [])) for _ in range(rng.randint(1, 4))]
             lo = [min(c) for c in zip(*points)]
             hi = [max(c) for c in zip(*points)]
             q = make_state(space, rng, [])
             extent = max(abs(v) for v in q + tuple(c for p in points for c in p))
-            b = bound(space.wrap(q), lo, hi, angle_slack(extent))
-            assert all(b <= space.distance(q, p) for p in points)
+            for bound in bounds:
+                b = bound(space.wrap(q), lo, hi, angle_slack(extent))
+                assert all(b <= space.distance(q, p) for p in points)
 
 
 def test_edges():

@@ -8,7 +8,7 @@ import random
 from planning_core.family_geometric_space_information import MotionHit
 from planning_core.kinoplan import body_tester, state_validator
 from planning_core.kinoplan_text import parse_kinoplan
-from planning_core.nearest.kdtree import space_metric
+from planning_core.kernels import space_metric
 from planning_core.worlds.body_motion import BodyMotionCheck
 
 SCENE = """kinoplan 1
