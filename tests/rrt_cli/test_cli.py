@@ -95,7 +95,8 @@ def test_bad_usage_gives_usage_and_exit_2(args):
 def test_help_lists_every_flag():
     done = run_planner(["-h"], "", timeout=30)
     assert done.returncode == 0
-    for flag in ("-grad", "-left", "-ugrad", "-seed", "-time", "-iterations", "-planner", "-stats"):
+    for flag in ("-grad", "-left", "-ugrad", "-seed", "-time", "-iterations", "-planner", "-stats",
+                 "-optimize", "-cost"):
         assert flag.encode() in done.stdout
 
 
@@ -106,8 +107,10 @@ def test_stats_line_is_key_value_on_stderr_then_the_kernels_that_ran():
     assert line.startswith("rrt_cli stats: ")
     fields = dict(item.split("=", 1) for item in line.split(": ", 1)[1].split())
     assert list(fields) == ["status", "planner", "vehicle", "seed", "iterations", "tree_nodes",
-                            "planning_seconds"]
+                            "planning_seconds", "cost", "first_solution_seconds"]
     assert fields["status"] == "solved" and fields["seed"] == "2"
+    assert float(fields["cost"]) > 0
+    assert fields["first_solution_seconds"] == fields["planning_seconds"]
     assert int(fields["tree_nodes"]) >= 2 and float(fields["planning_seconds"]) >= 0
     assert kernels == "rrt_cli kernels: segment test=GridWorld's own, interpreted"
 
