@@ -202,6 +202,9 @@ def main(argv: list[str] | None = None) -> int:
                                     f"seed={run_seed}")
         from planning_core.kernels import describe  # only with -stats: start-up
         say(f"rrt_cli kernels: {describe(setup)}")
+        if stats.improvements:
+            say("rrt_cli progress: " + " ".join(f"{seconds:.6f}:{cost:.9g}"
+                                                for seconds, cost in stats.improvements))
     if result.status is PlanStatus.OUT_OF_MEMORY:
         say(f"rrt_cli: out of memory: {result.message} (after "
             f"{stats.planning_seconds:.2f} s, seed {run_seed})")
@@ -223,7 +226,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def say_stats(si, result, names: str) -> None:
     """The -stats line: key=value pairs, stable for scripts (the benchmark harness
-    parses it); cost and first_solution_seconds are "none" without a solution."""
+    parses it); cost and first_solution_seconds are "none" without a solution. (An
+    optimizing run adds a line ``rrt_cli progress: SECONDS:COST ...``, one pair per
+    better solution found, after the kernels' line.)"""
     stats = result.stats
     cost = first = "none"
     if result.solved:
