@@ -69,6 +69,7 @@ def test_bad_usage_is_one_line_and_status_2(tmp_path):
     assert done.returncode == 2 and "does not exist" in done.stderr
 
 
+@pytest.mark.slow  # a run and its PDF: seconds (report.html's plots are tested unmarked)
 def test_plots_pdf_has_the_plots_a_page_each(tmp_path):
     pytest.importorskip("matplotlib")
     pdfium = pytest.importorskip("pypdfium2")

@@ -19,8 +19,8 @@ from validator.checks import validate_plan
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
 CASES = [  # (problem, flags, cost kind)
     (COURSE_DIR / "space-1.sw", [], "length"),
-    (COURSE_DIR / "space-1.sw", ["-grad"], "length"),
-    (COURSE_DIR / "space-1.sw", ["-grad", "-left"], "length"),
+    (COURSE_DIR / "simple-0.sw", ["-grad"], "length"),
+    (COURSE_DIR / "simple-0.sw", ["-grad", "-left"], "length"),
     (FAMILY / "pendulum-t5.kp", [], "duration"),
     (FAMILY / "arm2-pair1.kp", ["-planner", "rrtconnect"], "length"),
 ]

@@ -87,6 +87,7 @@ def test_generated_maps_valid(problem, name):
         assert_valid_roadmap_answer(problem, result)
 
 
+@pytest.mark.slow  # a comparison over seeds and maps: seconds
 def test_prmstar_paths_are_at_least_20_percent_shorter_than_rrt():
     problem = random_field(25, 0.25, random.Random(3))
     star, tree = [], []

@@ -70,6 +70,7 @@ def test_solves_the_100x100_maze():
         assert_valid(problem, result)
 
 
+@pytest.mark.slow  # a comparison over seeds: seconds
 def test_frontier_targets_grow_fewer_nodes_on_a_maze():
     # Node counts are deterministic per seed, so this is not a timing test.
     problem = maze(21, random.Random(4))
@@ -88,10 +89,9 @@ def test_frontier_share_outside_0_1_is_refused(share):
         rrtconnect.Params(frontier_targets=share)
 
 
-# The published (uniform) variant's 7 seeds take seconds: marked slow.
-@pytest.mark.parametrize("params", [rrtconnect.Params(),
-                                    pytest.param(PUBLISHED, marks=pytest.mark.slow)],
-                         ids=["frontier", "uniform"])
+# Comparisons over 7 seeds take seconds: marked slow.
+@pytest.mark.slow
+@pytest.mark.parametrize("params", [rrtconnect.Params(), PUBLISHED], ids=["frontier", "uniform"])
 def test_grows_fewer_nodes_than_rrt_on_a_maze(params):
     # Node counts are deterministic per seed, so this is not a timing test.
     problem = maze(21, random.Random(7))
