@@ -52,7 +52,7 @@ def seed(text: str) -> int:
 
 def build_parser() -> cli_common.OneLineErrorParser:
     parser = cli_common.OneLineErrorParser(
-        prog="rrt_cli",
+        prog="./run.sh", name="rrt_cli",
         description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
                     "problem); print the trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "
