@@ -5,10 +5,10 @@
   point vehicle (but maze-50; plus the open and narrow 500x500 maps) and up to
   20x20 for the spaceship (but maze-20) and up to 10x10 for the left-only ship
   (but maze-10), the course problems, 3 seeds.
-* ``course``: the README's planner table (issue 2): the course problems and the
+* ``course``: the README's planner table: the course problems and the
   200x200 random field, all three vehicles, 5 seeds; 30 s (point) and 60 s
   (ships) limits. Run it with ``--planners rrt``.
-* ``sweep``: issue 5's acceptance: every problem up to 100x100 and the course
+* ``sweep``: every problem up to 100x100 and the course
   problems, all three vehicles, 20 seeds, 30 s limit (the planner's default).
   Hours on 2 cores; run it with ``--planners`` and ``--vehicles`` in parts.
 * ``full``: every problem to 500x500 for the point vehicle (10 s limit), to
