@@ -9,11 +9,11 @@ and both against OMPL with Python callbacks, measured in one run.
 Problems: the quick preset's course problems and maps of 50x50 and up for the
 point vehicle, and its problems for the two ships; the family's arm2 and rigid2
 problems (``benchmarks/problems/family``) for those two "vehicles" (the geometric
-family, issue 19's point targets). Each case runs as whole processes in turn
+family, the point targets of benchmarks/targets.py). Each case runs as whole processes in turn
 (./run.sh compiled, ./run.sh with RRT_INTERPRETED=1, OMPL's planner), the order
 alternating, and reads each run's own planning time from its -stats line. The
 OMPL reference is geometric RRT for the point vehicle, the arm and the rigid body,
-control RRT for the ships (issue 19's acceptance ratios); with g++ and Debian's
+control RRT for the ships (the targets' ratios); with g++ and Debian's
 libompl-dev, the same set-up in C++ too (``benchmarks/ompl_cpp/``, built on first
 use into ``.build/``: benchmarks/ompl_cpp_programs.py). Prints a Markdown table of
 medians over seeds and repeats; an unsolved run counts its whole time limit (noted).
@@ -62,7 +62,7 @@ class Run:
 
 def problems_for(vehicle: str, patterns: list[str]) -> list[Path]:
     """The quick preset's problems for ``vehicle`` (point: its course problems and
-    its maps of 50x50 and up, where issue 19 sets the point targets; arm2 and rigid2:
+    its maps of 50x50 and up, where benchmarks/targets.py sets the point targets; arm2 and rigid2:
     the family's problems of that system)."""
     if vehicle in FAMILY:
         chosen = sorted(FAMILY_DIR.glob(f"{vehicle}-*.kp"))

@@ -12,7 +12,7 @@ answers are checked against the kd-tree's.
 
     python -m benchmarks.bench_kdtree [--sizes 1000 10000 100000] [--repeats 3] [--queries 1000]
 
-With ``--k-nearest``, seed 004's table instead (issue 15): ``k_nearest`` for
+With ``--k-nearest``, seed 004's table instead: ``k_nearest`` for
 k = 3..20 on roadmaps of N = 100..2000 uniform points (as PRM grows them) in
 the arm's torus (theta1, theta2, metric 1) and SE(2) (``x,y 0.7 theta 0.3``,
 a 2 x 2 world as in the rigid2 scenes), kd-tree against the scan, answers
@@ -155,7 +155,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--sizes", type=int, nargs="+", default=None,
                         help="N (default: 1000 10000 100000; --k-nearest: 100 200 500 1000 2000)")
     parser.add_argument("--k-nearest", action="store_true",
-                        help="seed 004's table: k_nearest on the torus and SE(2) (issue 15)")
+                        help="seed 004's table: k_nearest on the torus and SE(2)")
     parser.add_argument("--ks", type=int, nargs="+", default=[3, 5, 10, 20],
                         help="k for --k-nearest (default: 3 5 10 20)")
     parser.add_argument("--repeats", type=int, default=3)

@@ -1,5 +1,5 @@
 """What a planner pays before its first iteration on a big map, and whether the
-time limit bounds the whole run (issue 16).
+time limit bounds the whole run.
 
 Part 1, in this process, on random maps (``--density`` of the cells blocked,
 start in the bottom-left cell, goal in the top-right one): the median over

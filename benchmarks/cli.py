@@ -51,7 +51,7 @@ from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import CsvAppender, read_csv, write_csv
 from benchmarks.shortest_path import shortest_lengths
-from cli_common import EXIT_USAGE, OneLineErrorParser
+from cli_common import EXIT_USAGE, OneLineErrorParser, add_switches
 from planning_core.vehicles import Vehicle
 
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
@@ -82,20 +82,17 @@ def build_parser() -> argparse.ArgumentParser:
                         help="runs at a time, each in its own worker process (default: 2)")
     parser.add_argument("--out", type=Path, help="output directory "
                         "(default: benchmarks/results/<preset>)")
-    parser.add_argument("--no-ompl", action="store_true", help="leave OMPL's planners out")
-    parser.add_argument("--no-plots", action="store_true",
-                        help="skip the plots (plots.pdf and report.html's SVG)")
-    parser.add_argument("--no-generate", action="store_true",
-                        help="use the problem files as they are (no regeneration)")
-    parser.add_argument("--report-only", action="store_true",
-                        help="rebuild the reports from --out/runs.csv without running")
-    parser.add_argument("--strict", action="store_true",
-                        help="validate with -strict (a cut corner is a failure)")
+    add_switches(parser, {
+        "--no-ompl": "leave OMPL's planners out",
+        "--no-plots": "skip the plots (plots.pdf and report.html's SVG)",
+        "--no-generate": "use the problem files as they are (no regeneration)",
+        "--report-only": "rebuild the reports from --out/runs.csv without running",
+        "--strict": "validate with -strict (a cut corner is a failure)"})
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run on the Dask cluster of this scheduler (tcp://HOST:PORT), "
                              "--workers runs at a time; default: local worker processes")
-    parser.add_argument("--rerun", action="store_true",
-                        help="redo the runs already in --out/runs.sqlite (default: keep them)")
+    add_switches(parser, {
+        "--rerun": "redo the runs already in --out/runs.sqlite (default: keep them)"})
     return parser
 
 

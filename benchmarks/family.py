@@ -1,4 +1,4 @@
-"""The kinoplan family's presets (SPEC 5, issues 14 and 15): which problems of
+"""The kinoplan family's presets (SPEC 5): which problems of
 ``benchmarks/problems/family/`` (SPEC's examples) and ``family/variants/`` (ours),
 which planners, how many runs, what time limit.
 
@@ -9,7 +9,7 @@ which planners, how many runs, what time limit.
 * ``family-geometric``: arm2's five start/goal pairs and the rigid2 scenes with our
   rrt, rrtconnect, prm, prmstar and OMPL's RRT, RRTConnect, PRM; 20 runs.
 * ``family-quick``: both, 3 runs, 10 s (tests, CI, a first look).
-* ``family-sweep``: issue 14's and 15's acceptance: every one of our family planners
+* ``family-sweep``: every one of our family planners
   on every family problem (variants included), 20 seeds, 30 s: solved and validated %.
 
 A planner a table names but the registry does not offer for the problem's system

@@ -2,7 +2,7 @@
 length | Tree nodes, mean ± std) per table, path length both as control duration
 (seconds, OMPL's ``PathControl::length()``) and in the problem's metric, the ratio of
 medians against OMPL's RRT (control RRT for kinodynamic systems, geometric RRT for
-arm2 and rigid2) on the same problem and seeds, issue 14's and 15's targets, and
+arm2 and rigid2) on the same problem and seeds, the targets (benchmarks/targets.py), and
 the solved-and-validated share per planner and problem (the seed sweep's table).
 
 Conventions as in ``report.py``: time over all runs (an unsolved run counts the time
@@ -161,7 +161,7 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
             "OMPL RRT's (control RRT for kinodynamic systems, geometric for arm2 and "
             "rigid2), Python callbacks, same problems and seeds. A planner marked "
             f"\"{NOT_AVAILABLE}\" does not plan for that system (yet).", ""]
-    out += ["## Targets (issues 14 and 15)", "", TARGETS_NOTE, ""] + targets_table(rows)
+    out += ["## Targets", "", TARGETS_NOTE, ""] + targets_table(rows)
     out += [""]
     for table in preset.tables:
         out += [f"## {table.title}", ""]

@@ -1,7 +1,7 @@
 """The benchmark problem suite: seeded generators for four map families, each
 problem proven solvable, written in the `.sw` format.
 
-Families (SPEC 4 and issue 4):
+Families (SPEC 4):
 
 * ``random-dNN``: every cell blocked independently with probability NN/100
   (0.20 and 0.35); start near the bottom-left corner, goal near the top-right.

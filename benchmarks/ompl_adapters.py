@@ -49,9 +49,8 @@ class OmplParams:
     velocity_bound: float = 1.0
     """Spaceship: |dx|, |dy| bound of the sampled states (not a constraint on the ship)."""
     kpiece_cell_size: float = 0.5
-    """KPIECE1 projects states on their position, in square cells this wide (map units).
-    On three small maps, 0.5 solved all runs; 1, 2 and OMPL's default random
-    projection of R^4 left some unsolved in 10 s."""
+    """KPIECE1 projects states on their position, in square cells this wide (map units;
+    docs/benchmarks.md says why 0.5)."""
 
 
 @dataclass(frozen=True)
@@ -76,20 +75,46 @@ def ompl_seed(seed: int) -> int:
     return seed % 0xFFFFFFFF + 1
 
 
-def _modules():
+def ompl_modules(planner: str, planners: tuple[str, ...], what: str, seed: int):
+    """OMPL's base, control and geometric modules, its generator seeded and its log
+    silenced, once ``planner`` is known to be one of ``planners`` (set up for ``what``)."""
+    if planner not in planners:
+        raise ValueError(f"OMPL planner {planner!r} is not set up for the "
+                         f"{what} (choose from {planners})")
     from ompl import base as ob, control as oc, geometric as og, util as ou
-    return ob, og, oc, ou
+    ou.RNG.setSeed(ompl_seed(seed))
+    ou.setLogLevel(ou.LOG_NONE)
+    return ob, oc, og
+
+
+_OMPL_CLASSES = {"rrt": "RRT", "rrtconnect": "RRTConnect", "kpiece1": "KPIECE1", "prm": "PRM"}
+
+
+def ompl_planner(module, planner: str, info, goal_bias: float):
+    """OMPL's ``planner`` from ``module`` (geometric or control) on ``info``; RRT with
+    ``goal_bias`` (the others keep OMPL's defaults)."""
+    chosen = getattr(module, _OMPL_CLASSES[planner])(info)
+    if planner == "rrt":
+        chosen.setGoalBias(goal_bias)
+    return chosen
+
+
+def geometric_tree(ob, info, setup, get) -> tuple[int, tuple[tuple[float, ...], ...]]:
+    """The planner data's vertex count and its edges as lines (parent, child), each
+    state read by ``get``."""
+    data = ob.PlannerData(info)
+    setup.getPlannerData(data)
+    tree = []
+    for v in range(data.numVertices()):
+        parent = get(data.getVertex(v).getState())
+        tree.extend(parent + get(data.getVertex(child).getState()) for child in data.getEdges(v))
+    return data.numVertices(), tuple(tree)
 
 
 def solve(problem: Problem, vehicle: Vehicle, planner: str, time_limit: float, seed: int,
           params: OmplParams = OmplParams()) -> OmplResult:
     """Plan with OMPL; ``planner`` is one of :func:`planners_for` ``(vehicle)``."""
-    if planner not in planners_for(vehicle):
-        raise ValueError(f"OMPL planner {planner!r} is not set up for the "
-                         f"{vehicle.value} vehicle (choose from {planners_for(vehicle)})")
-    ob, og, oc, ou = _modules()
-    ou.RNG.setSeed(ompl_seed(seed))
-    ou.setLogLevel(ou.LOG_NONE)
+    ob, oc, og = ompl_modules(planner, planners_for(vehicle), f"{vehicle.value} vehicle", seed)
     if vehicle.is_spaceship:
         return _solve_spaceship(ob, oc, problem, vehicle, planner, time_limit, params)
     return _solve_point(ob, og, problem, planner, time_limit, params)
@@ -148,25 +173,14 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
     start[0], start[1] = problem.start
     goal[0], goal[1] = problem.goal
     setup.setStartAndGoalStates(start, goal, inside(params.goal_radius))
-    if planner == "rrt":
-        chosen = og.RRT(info)
-        chosen.setGoalBias(params.goal_bias)
-    else:
-        chosen = og.RRTConnect(info)
+    chosen = ompl_planner(og, planner, info, params.goal_bias)
     status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:
         trajectory = tuple((s[0], s[1]) for s in setup.getSolutionPath().getStates())
-    data = ob.PlannerData(info)
-    setup.getPlannerData(data)
-    tree = []
-    for v in range(data.numVertices()):
-        parent = data.getVertex(v).getState()
-        for child_index in data.getEdges(v):
-            child = data.getVertex(child_index).getState()
-            tree.append((parent[0], parent[1], child[0], child[1]))
-    return OmplResult(solved, status.asString(), trajectory, tuple(tree), termination.polls,
-                      data.numVertices(), time.perf_counter() - began)
+    vertices, tree = geometric_tree(ob, info, setup, lambda s: (s[0], s[1]))
+    return OmplResult(solved, status.asString(), trajectory, tree, termination.polls,
+                      vertices, time.perf_counter() - began)
 
 
 def inside(radius: float) -> float:
@@ -223,11 +237,7 @@ def _solve_spaceship(ob, oc, problem: Problem, vehicle: Vehicle, planner: str,
     start[0], start[1], start[2], start[3] = problem.start[0], problem.start[1], 0.0, 0.0
     setup.setStartState(start)
     setup.setGoal(_position_goal(ob, info, problem.goal, inside(params.goal_radius)))
-    if planner == "rrt":
-        chosen = oc.RRT(info)
-        chosen.setGoalBias(params.goal_bias)
-    else:
-        chosen = oc.KPIECE1(info)
+    chosen = ompl_planner(oc, planner, info, params.goal_bias)
     status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:

@@ -1,5 +1,5 @@
-"""The C++ OMPL programs of ``benchmarks/ompl_cpp/`` (OMPL with C++ callbacks, issue
-19's practical limit): built on first use into ``.build/`` with g++ and Debian's
+"""The C++ OMPL programs of ``benchmarks/ompl_cpp/`` (OMPL with C++ callbacks, the
+fastest OMPL can be run): built on first use into ``.build/`` with g++ and Debian's
 ``libompl-dev`` (``apt-get install libompl-dev``), and the flat text each reads on stdin.
 
 * ``grid_ompl``: a ``.sw`` problem (:func:`grid_input`), point, ship and left modes;

@@ -39,7 +39,8 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from benchmarks.ompl_adapters import OmplResult, inside, make_bounds, ompl_seed, solve_with
+from benchmarks.ompl_adapters import (OmplResult, geometric_tree, inside, make_bounds,
+                                      ompl_modules, ompl_planner, solve_with)
 
 if TYPE_CHECKING:  # imported where used: a grid problem's peer run should not load the family
     from planning_core.kinoplan import KinoplanProblem
@@ -102,21 +103,12 @@ class Layout:
             where[i] = f"s[{k}][{j}]"
 
 
-def _modules():
-    from ompl import base as ob, control as oc, geometric as og, util as ou
-    return ob, oc, og, ou
-
-
 def solve_family(problem: KinoplanProblem, planner: str, time_limit: float, seed: int,
                  params: FamilyOmplParams = FamilyOmplParams()) -> OmplResult:
     """Plan with OMPL; ``planner`` is one of :func:`planners_for_system`."""
     system = problem.system
-    if planner not in planners_for_system(system):
-        raise ValueError(f"OMPL planner {planner!r} is not set up for the {system.name} "
-                         f"system (choose from {planners_for_system(system)})")
-    ob, oc, og, ou = _modules()
-    ou.RNG.setSeed(ompl_seed(seed))
-    ou.setLogLevel(ou.LOG_NONE)
+    ob, oc, og = ompl_modules(planner, planners_for_system(system), f"{system.name} system",
+                              seed)
     began = time.perf_counter()
     layout = Layout(ob, system.space)
     if system.kinodynamic:
@@ -203,9 +195,7 @@ def _solve_kinodynamic(ob, oc, problem, layout, planner, time_limit, params, beg
     setup = oc.SimpleSetup(info)
     setup.setStartState(_start(layout, problem))
     setup.setGoal(_goal(ob, info, problem, layout))
-    chosen = oc.RRT(info) if planner == "rrt" else oc.KPIECE1(info)
-    if planner == "rrt":
-        chosen.setGoalBias(params.goal_bias)
+    chosen = ompl_planner(oc, planner, info, params.goal_bias)
     status, termination, solved = solve_with(ob, setup, chosen, time_limit)
     trajectory = ()
     if solved:
@@ -265,18 +255,11 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
     setup = og.SimpleSetup(info)
     setup.setStartState(_start(layout, problem))
     setup.setGoal(_goal(ob, info, problem, layout))
-    chosen = {"rrt": og.RRT, "rrtconnect": og.RRTConnect, "prm": og.PRM}[planner](info)
-    if planner == "rrt":
-        chosen.setGoalBias(params.goal_bias)
+    chosen = ompl_planner(og, planner, info, params.goal_bias)
     # PRM: OMPL's own timer (see the module's note: PRM's threads and a Python condition).
     status, termination, solved = solve_with(ob, setup, chosen, time_limit,
                                              timed=planner == "prm")
     trajectory = tuple(get(s) for s in setup.getSolutionPath().getStates()) if solved else ()
-    data = ob.PlannerData(info)
-    setup.getPlannerData(data)
-    tree = []
-    for v in range(data.numVertices()):
-        parent = get(data.getVertex(v).getState())
-        tree.extend(parent + get(data.getVertex(child).getState()) for child in data.getEdges(v))
-    return OmplResult(solved, status.asString(), trajectory, tuple(tree), termination.polls,
-                      data.numVertices(), time.perf_counter() - began)
+    vertices, tree = geometric_tree(ob, info, setup, get)
+    return OmplResult(solved, status.asString(), trajectory, tree, termination.polls,
+                      vertices, time.perf_counter() - began)

@@ -1,20 +1,20 @@
 """Named subsets of the suite: which problems, vehicles, seeds and time limits.
 
-* ``smoke``: a few seconds; the course problems, one seed (for trying the tool).
-* ``quick``: about 5 minutes on 2 cores; every family up to 50x50 for the
-  point vehicle (but maze-50; plus the open and narrow 500x500 maps) and up to
-  20x20 for the spaceship (but maze-20) and up to 10x10 for the left-only ship
-  (but maze-10), the course problems, 3 seeds.
-* ``course``: the README's planner table (issue 2): the course problems and the
+* ``smoke``: the course problems, one seed (for trying the tool).
+* ``quick``: every family up to 50x50 for the point vehicle (but maze-50; plus the
+  open and narrow 500x500 maps) and up to 20x20 for the spaceship (but maze-20) and
+  up to 10x10 for the left-only ship (but maze-10), the course problems, 3 seeds.
+* ``course``: the README's planner table: the course problems and the
   200x200 random field, all three vehicles, 5 seeds; 30 s (point) and 60 s
   (ships) limits. Run it with ``--planners rrt``.
-* ``sweep``: issue 5's acceptance: every problem up to 100x100 and the course
-  problems, all three vehicles, 20 seeds, 30 s limit (the planner's default).
-  Hours on 2 cores; run it with ``--planners`` and ``--vehicles`` in parts.
+* ``sweep``: every problem up to 100x100 and the course problems, all three
+  vehicles, 20 seeds, 30 s limit (the planner's default); run it with
+  ``--planners`` and ``--vehicles`` in parts.
 * ``full``: every problem to 500x500 for the point vehicle (10 s limit), to
   200x200 for the spaceship (120 s) and to 50x50 for the left-only ship (30 s),
-  10 seeds (5 for the ships). Hours on 2 cores, mostly runs that use their
-  whole limit.
+  10 seeds (5 for the ships).
+
+How long each takes on 2 cores: docs/benchmarks.md.
 """
 
 from __future__ import annotations

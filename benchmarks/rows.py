@@ -120,7 +120,20 @@ def write_csv(rows: Iterable[RunRow], path: Path) -> None:
     os.replace(partial, path)
 
 
-class CsvAppender:
+class Closing:
+    """Closed at the end of a ``with`` block: a subclass defines ``close``."""
+
+    def close(self) -> None:
+        raise NotImplementedError
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info) -> None:
+        self.close()
+
+
+class CsvAppender(Closing):
     """A CSV written as runs finish: the header at once, then each row as it is
     given, flushed, so that a run stopped at any moment leaves the finished rows."""
 
@@ -136,12 +149,6 @@ class CsvAppender:
 
     def close(self) -> None:
         self._handle.close()
-
-    def __enter__(self) -> "CsvAppender":
-        return self
-
-    def __exit__(self, *exc_info) -> None:
-        self.close()
 
 
 def read_csv(path: Path) -> list[RunRow]:

@@ -26,7 +26,7 @@ from benchmarks.catalog import label
 from benchmarks.generator import problem_id
 from benchmarks.harness import RunSpec
 from benchmarks.ompl_log import LIBRARY, PROPERTIES, STATUS_NAMES, VERSION, experiment_name
-from benchmarks.rows import FIELD_NAMES, RunRow
+from benchmarks.rows import FIELD_NAMES, Closing, RunRow
 from cli_common import parse_any_problem
 
 DB_NAME = "runs.sqlite"
@@ -82,7 +82,7 @@ def code_fingerprint(strict: bool, root: Path = Path(__file__).resolve().parent.
     return digest.hexdigest()
 
 
-class RunStore:
+class RunStore(Closing):
     """``runs.sqlite`` of one ``--out`` folder."""
 
     def __init__(self, out: Path, date: str = ""):
@@ -102,12 +102,6 @@ class RunStore:
 
     def close(self) -> None:
         self.db.close()
-
-    def __enter__(self) -> "RunStore":
-        return self
-
-    def __exit__(self, *exc_info) -> None:
-        self.close()
 
     def _columns(self, table: str) -> list[str]:
         return [found[1] for found in self.db.execute(f"PRAGMA table_info({table})")]

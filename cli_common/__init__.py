@@ -132,16 +132,19 @@ def _make_parser_class():
 
 
     class OneLineErrorParser(argparse.ArgumentParser):
-        """``argparse`` with errors as ``usage: ...`` and ``PROG: error: ...``, exit 2; an
-        unknown argument gets a hint (a near-miss option, a problem file given by name)."""
+        """``argparse`` with errors as ``usage: ...`` and ``NAME: error: ...``, exit 2; an
+        unknown argument gets a hint (a near-miss option, a problem file given by name).
+        ``name``: what the program's stderr lines start with (default: ``prog``, what
+        the usage line says the user types)."""
 
-        def __init__(self, *args, **kwargs):
+        def __init__(self, *args, name: str | None = None, **kwargs):
             kwargs.setdefault("formatter_class", _HelpFormatter)
             super().__init__(*args, **kwargs)
+            self.name = name or self.prog
 
         def error(self, message):
             say(self.format_usage().rstrip("\n"))
-            say(f"{self.prog}: error: {message}")
+            say(f"{self.name}: error: {message}")
             raise SystemExit(EXIT_USAGE)
 
         def parse_args(self, args=None, namespace=None):
@@ -227,15 +230,18 @@ def positive_int(text: str) -> int:
 # ----- vehicle flags ----------------------------------------------------------------
 
 
+def add_switches(parser, switches: dict[str, str]) -> None:
+    """On/off flags (false unless given), each with its help, in the order given."""
+    for flag, help_text in switches.items():
+        parser.add_argument(flag, action="store_true", help=help_text)
+
+
 def add_vehicle_flags(parser: argparse.ArgumentParser, title: str) -> None:
     """The course's vehicle flags, spelled as the course spells them."""
-    group = parser.add_argument_group(title)
-    group.add_argument("-ugrad", action="store_true",
-                       help="point vehicle <x, y> moving straight (the default)")
-    group.add_argument("-grad", action="store_true",
-                       help="spaceship <x, y, dx, dy> with thrust <theta, s>")
-    group.add_argument("-left", action="store_true",
-                       help="spaceship that only thrusts ahead or left (implies -grad)")
+    add_switches(parser.add_argument_group(title), {
+        "-ugrad": "point vehicle <x, y> moving straight (the default)",
+        "-grad": "spaceship <x, y, dx, dy> with thrust <theta, s>",
+        "-left": "spaceship that only thrusts ahead or left (implies -grad)"})
 
 
 def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> Vehicle:

@@ -1,5 +1,5 @@
 """``rrt-grade``: grade every submission on every rubric item (problem x mode), each
-as many times as the rubric repeats it (issue 18); ``rrt-grade gradescope`` grades the
+as many times as the rubric repeats it; ``rrt-grade gradescope`` grades the
 one submission of Gradescope's autograder layout.
 
     rrt-grade --submissions DIR --problems DIR --out DIR [--rubric FILE] [--modes ...]

@@ -96,45 +96,42 @@ def slowest(report: Results, graded: list[Scored]) -> list[str]:
     return lines + [""]
 
 
+def table_section(intro: list[str], columns: list[str], rows: list[str]) -> list[str]:
+    """``intro``, then a table of ``columns`` over ``rows`` (lines already in pipes), or
+    "None." where there are no rows."""
+    if not rows:
+        return intro + ["None.", ""]
+    return intro + ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)] + rows + [""]
+
+
 def flaky_runs(graded: list[Scored]) -> list[str]:
-    found = flaky_items(graded)
-    lines = ["### Flaky: valid on some repeats only", ""]
-    if not found:
-        return lines + ["None.", ""]
-    lines += ["| submission | problem | mode | valid repeats |", "|---|---|---|---|"]
-    lines += [f"| {text(name)} | {text(problem)} | {mode} | "
-              f"{sum(row['valid'] for row in rows)} of {len(rows)} |"
-              for name, (problem, mode), rows in found]
-    return lines + [""]
+    rows = [f"| {text(name)} | {text(problem)} | {mode} | "
+            f"{sum(run['valid'] for run in runs)} of {len(runs)} |"
+            for name, (problem, mode), runs in flaky_items(graded)]
+    return table_section(["### Flaky: valid on some repeats only", ""],
+                         ["submission", "problem", "mode", "valid repeats"], rows)
 
 
 def class_failures_section(graded: list[Scored]) -> list[str]:
     """Each distinct failure over the class: how many runs, which submissions."""
-    found = class_failures(graded)
-    lines = ["### Failing runs", ""]
-    if not found:
-        return lines + ["None.", ""]
-    lines += ["| failure | runs | submissions |", "|---|---|---|"]
-    for what, count, names in found:
+    rows = []
+    for what, count, names in class_failures(graded):
         shown = ", ".join(text(name) for name in names[:NAMES_SHOWN])
         more = len(names) - NAMES_SHOWN
-        lines.append(f"| {failure_text(what)} | {count} | "
-                     f"{shown}{f' and {more} more' if more > 0 else ''} |")
-    return lines + [""]
+        rows.append(f"| {failure_text(what)} | {count} | "
+                    f"{shown}{f' and {more} more' if more > 0 else ''} |")
+    return table_section(["### Failing runs", ""], ["failure", "runs", "submissions"], rows)
 
 
 def similar_pairs(pairs: list) -> list[str]:
-    lines = ["### Similar pairs to look at", "",
+    intro = ["### Similar pairs to look at", "",
              "A flag for a person to look at, never a change of score: pairs whose valid "
              "answers are byte-identical on the same problem and mode (the same code with "
              "the same seeds), or whose sources are near-identical (shared token shingles).",
              ""]
-    if not pairs:
-        return lines + ["None.", ""]
-    lines += ["| submissions | what | evidence |", "|---|---|---|"]
-    lines += [f"| {text(pair.first)}, {text(pair.second)} | {pair.kind} | "
-              f"{text(pair.evidence)} |" for pair in pairs]
-    return lines + [""]
+    rows = [f"| {text(pair.first)}, {text(pair.second)} | {pair.kind} | "
+            f"{text(pair.evidence)} |" for pair in pairs]
+    return table_section(intro, ["submissions", "what", "evidence"], rows)
 
 
 def cell(rows: list[dict], out: Path) -> str:

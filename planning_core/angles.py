@@ -2,7 +2,7 @@
 
 The kd-tree's metric, the family's slice loops and the arm's link tests wrap an
 angle on every call; compiled (mypyc), a call to ``math.remainder`` reads the
-module's dict and boxes its floats (about 700 instructions), this one is native.
+module's dict and boxes its floats; this one is native.
 """
 
 from __future__ import annotations

@@ -1,1 +1,2 @@
-"""The RRT planner for grid maps (point vehicle and spaceships) and its CLI."""
+"""The planner, ``./run.sh``: its command line and the planners (``rrt_cli.planners``),
+for the course's grid vehicles and the ``kinoplan 1`` family alike."""

@@ -1,9 +1,10 @@
-"""``rrt_cli``: read a problem on stdin, print a trajectory and the motion tree.
+"""``./run.sh`` (``python -m rrt_cli``): read a problem on stdin, print a trajectory and
+the motion tree.
 
 The problem is a `.sw` grid (SPEC 1, its first word an integer) or a ``kinoplan 1``
 problem (SPEC 5, its first word ``kinoplan``): then its ``system`` line names the
-system and the vehicle flags are a usage error; RRT plans for every family
-system, RRT-Connect, PRM and PRM* for the geometric ones (arm2, rigid2), and
+system and the vehicle flags are a usage error. A planner plans for the kinds of
+system (geometric, kinodynamic) its registry line names (``rrt_cli.planners``), and
 ``-smooth`` shortens a geometric system's path.
 
 Exit status: 0 solved, 1 the answer could not be written (stdout closed, full or
@@ -52,7 +53,7 @@ def seed(text: str) -> int:
 
 def build_parser() -> cli_common.OneLineErrorParser:
     parser = cli_common.OneLineErrorParser(
-        prog="rrt_cli",
+        prog="./run.sh", name="rrt_cli",
         description="Plan for a problem read from stdin (a .sw grid map, or a kinoplan 1 "
                     "problem); print the trajectory and the motion tree on stdout.",
         epilog="Exit status: 0 solved, 1 the answer could not be written to stdout, "

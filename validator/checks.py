@@ -85,13 +85,13 @@ class Limits:
     """
 
     max_trajectory_lines: int = 1_000_000
-    """A larger trajectory count fails check 1 (checking costs ~30 us a line)."""
+    """A larger trajectory count fails check 1."""
     max_point_path_length: float = 1_000_000.0
-    """A longer point path fails check 6 with TOO_LONG (sampling costs ~0.3 us per 0.05)."""
+    """A longer point path fails check 6 with TOO_LONG."""
     max_tree_rows_kept: int = 250_000
     """Tree rows past this many are parsed and counted but not kept (nor drawn)."""
     max_motion_samples: int = 1_000_000
-    """Geometric family: more samples fail check 6 with TOO_LONG (6-16 us each)."""
+    """Geometric family: more samples fail check 6 with TOO_LONG."""
     max_slices: int = 1_200_000
     """Kinodynamic family: the slices re-simulated and tested, each line's K plus
     ``line_cost`` (its printed state's test, its checks); more fail check 6 (the
@@ -595,11 +595,15 @@ class _KinoplanValidation(_Validation):
                         "(an angle may be printed in any turn within it)")
         return None
 
-    def check_bounds(self) -> CheckResult:
+    def row_violation(self, row) -> str | None:
+        """Why a trajectory line is out of bounds (state, angle turns, control), or None."""
         system, n = self.system, self.n
+        return (system.bounds_violation(row[:n]) or self.angle_violation(row)
+                or system.control_violation(row[n:]))
+
+    def check_bounds(self) -> CheckResult:
         for index, row in enumerate(self.plan.trajectory_rows()):
-            why = (system.bounds_violation(row[:n]) or self.angle_violation(row)
-                   or system.control_violation(row[n:]))
+            why = self.row_violation(row)
             if why is not None:
                 line = self.line_of(index)
                 raise self.fail("bounds",
@@ -674,14 +678,9 @@ class _GeometricValidation(_KinoplanValidation):
     # parse: only the widths (no K)
     check_parse = _Validation.check_parse
 
-    def check_bounds(self) -> CheckResult:
-        for index, row in enumerate(self.plan.trajectory_rows()):
-            why = self.system.bounds_violation(row) or self.angle_violation(row)
-            if why is not None:
-                line = self.line_of(index)
-                raise self.fail("bounds",
-                                OUT_OF_BOUNDS, f"line {line}: {why}", line, self.where(row))
-        return self.passed("bounds")
+    def row_violation(self, row) -> str | None:
+        """A configuration line: its bounds and angle turns (it holds no control)."""
+        return self.system.bounds_violation(row) or self.angle_violation(row)
 
     # goal: the last configuration itself
     def check_goal(self) -> CheckResult:

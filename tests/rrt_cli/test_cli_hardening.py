@@ -166,7 +166,7 @@ def test_a_near_miss_flag_gets_did_you_mean(typo, meant):
     done = run_planner([typo], SPACE0)
     assert done.returncode == 2
     lines = done.stderr.decode().splitlines()
-    assert lines[0].startswith("usage: rrt_cli")
+    assert lines[0].startswith("usage: ./run.sh")
     assert lines[-1] == f"rrt_cli: error: unrecognized arguments: {typo} (did you mean {meant}?)"
 
 
