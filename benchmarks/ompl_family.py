@@ -39,7 +39,8 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from benchmarks.ompl_adapters import OmplResult, inside, make_bounds, ompl_seed, solve_with
+from benchmarks.ompl_adapters import (OPTIMIZING_PLANNERS, OmplResult, inside, make_bounds,
+                                      ompl_seed, optimizing_planner, solve_with)
 
 if TYPE_CHECKING:  # imported where used: a grid problem's peer run should not load the family
     from planning_core.kinoplan import KinoplanProblem
@@ -57,7 +58,7 @@ class FamilyOmplParams:
 
 
 def planners_for_system(system) -> tuple[str, ...]:
-    return KINODYNAMIC_PLANNERS if system.kinodynamic else GEOMETRIC_PLANNERS
+    return KINODYNAMIC_PLANNERS if system.kinodynamic else GEOMETRIC_PLANNERS + OPTIMIZING_PLANNERS
 
 
 class Layout:
@@ -66,6 +67,9 @@ class Layout:
 
     def __init__(self, ob, space):
         self.space = ob.CompoundStateSpace()
+        self.exact_metric = True
+        """OMPL's distance is our metric (no group was split into one subspace per
+        variable)."""
         where: dict[int, str] = {}
         grouped = {i for indices, _ in space.groups for i in indices}
         parts = [(indices, weight) for indices, weight in space.groups]
@@ -75,6 +79,7 @@ class Layout:
         for indices, weight in parts:
             angles = [space.variables[i].angle for i in indices]
             if any(angles) and len(indices) > 1:  # per variable (see the module's note)
+                self.exact_metric = False
                 for i in indices:
                     self._add(ob, space, (i,), weight, where)
             else:
@@ -108,7 +113,8 @@ def _modules():
 
 
 def solve_family(problem: KinoplanProblem, planner: str, time_limit: float, seed: int,
-                 params: FamilyOmplParams = FamilyOmplParams()) -> OmplResult:
+                 params: FamilyOmplParams = FamilyOmplParams(),
+                 optimize: bool = False) -> OmplResult:
     """Plan with OMPL; ``planner`` is one of :func:`planners_for_system`."""
     system = problem.system
     if planner not in planners_for_system(system):
@@ -121,7 +127,8 @@ def solve_family(problem: KinoplanProblem, planner: str, time_limit: float, seed
     layout = Layout(ob, system.space)
     if system.kinodynamic:
         return _solve_kinodynamic(ob, oc, problem, layout, planner, time_limit, params, began)
-    return _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began)
+    return _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began,
+                            optimize)
 
 
 def _goal(ob, info, problem: KinoplanProblem, layout: Layout):
@@ -248,7 +255,25 @@ def _control_tree(data, get, held, dt) -> tuple[tuple[float, ...], ...]:
     return tuple(rows)
 
 
-def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began):
+def path_objective(ob, info, problem: KinoplanProblem, layout: Layout):
+    """Path length in our metric: OMPL's own objective where its distance is our
+    metric (rigid2), else (arm2) a Python objective that calls our metric."""
+    if layout.exact_metric:
+        return ob.PathLengthOptimizationObjective(info)
+    distance, get = problem.system.space.distance, layout.get
+
+    class OurPathLength(ob.OptimizationObjective):
+        def motionCost(self, a, b):
+            return ob.Cost(distance(get(a), get(b)))
+
+        def stateCost(self, state):
+            return ob.Cost(0.0)
+
+    return OurPathLength(info)
+
+
+def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began,
+                     optimize=False):
     from planning_core.kinoplan import state_validator
     system = problem.system
     info = ob.SpaceInformation(layout.space)
@@ -265,12 +290,16 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
     setup = og.SimpleSetup(info)
     setup.setStartState(_start(layout, problem))
     setup.setGoal(_goal(ob, info, problem, layout))
-    chosen = {"rrt": og.RRT, "rrtconnect": og.RRTConnect, "prm": og.PRM}[planner](info)
+    if planner in OPTIMIZING_PLANNERS:
+        chosen = optimizing_planner(ob, og, info, setup, planner,
+                                    path_objective(ob, info, problem, layout), optimize)
+    else:
+        chosen = {"rrt": og.RRT, "rrtconnect": og.RRTConnect, "prm": og.PRM}[planner](info)
     if planner == "rrt":
         chosen.setGoalBias(params.goal_bias)
     # PRM: OMPL's own timer (see the module's note: PRM's threads and a Python condition).
     status, termination, solved = solve_with(ob, setup, chosen, time_limit,
-                                             timed=planner == "prm")
+                                             timed=planner == "prm", began=began)
     trajectory = tuple(get(s) for s in setup.getSolutionPath().getStates()) if solved else ()
     data = ob.PlannerData(info)
     setup.getPlannerData(data)
@@ -279,4 +308,5 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
         parent = get(data.getVertex(v).getState())
         tree.extend(parent + get(data.getVertex(child).getState()) for child in data.getEdges(v))
     return OmplResult(solved, status.asString(), trajectory, tuple(tree), termination.polls,
-                      data.numVertices(), time.perf_counter() - began)
+                      data.numVertices(), time.perf_counter() - began,
+                      tuple(termination.improvements))
