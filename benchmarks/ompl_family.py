@@ -255,10 +255,14 @@ def _control_tree(data, get, held, dt) -> tuple[tuple[float, ...], ...]:
     return tuple(rows)
 
 
-def path_objective(ob, info, problem: KinoplanProblem, layout: Layout):
-    """Path length in our metric: OMPL's own objective where its distance is our
-    metric (rigid2), else (arm2) a Python objective that calls our metric."""
-    if layout.exact_metric:
+def path_objective(ob, info, problem: KinoplanProblem, layout: Layout, informed: bool):
+    """Path length in our metric: OMPL's own objective where its distance is our metric
+    (rigid2), else (arm2) a Python objective that calls our metric. Informed RRT*
+    always gets the Python objective: OMPL's direct informed sampler for its own
+    objective takes only RealVector, SE2 and SE3 spaces, not our compound of subspaces
+    (it raises), while with another objective OMPL's Informed RRT* falls back to its
+    generic informed sampling."""
+    if layout.exact_metric and not informed:
         return ob.PathLengthOptimizationObjective(info)
     distance, get = problem.system.space.distance, layout.get
 
@@ -292,7 +296,8 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
     setup.setGoal(_goal(ob, info, problem, layout))
     if planner in OPTIMIZING_PLANNERS:
         chosen = optimizing_planner(ob, og, info, setup, planner,
-                                    path_objective(ob, info, problem, layout), optimize)
+                                    path_objective(ob, info, problem, layout, planner == "informed"),
+                                    optimize)
     else:
         chosen = {"rrt": og.RRT, "rrtconnect": og.RRTConnect, "prm": og.PRM}[planner](info)
     if planner == "rrt":
