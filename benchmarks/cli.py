@@ -190,7 +190,8 @@ def _markdown(rows, meta: dict, shortest) -> str:
         return family_markdown_report(rows, meta, family.FAMILY_PRESETS[name])
     if name in optimal.OPTIMAL_PRESETS:
         from benchmarks.convergence import markdown_report as convergence_report
-        return convergence_report(rows, meta, optimal.OPTIMAL_PRESETS[name].checkpoints)
+        return convergence_report(rows, meta, optimal.OPTIMAL_PRESETS[name].checkpoints,
+                                  shortest)
     return markdown_report(rows, meta, shortest=shortest)
 
 
@@ -201,10 +202,8 @@ def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = Tr
     (no yardstick)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
-    grid_preset = (meta.get("preset", "") not in family.FAMILY_PRESETS
-                   and meta.get("preset", "") not in optimal.OPTIMAL_PRESETS)
     shortest = None
-    if yardstick and grid_preset:  # seconds at 100x100
+    if yardstick and meta.get("preset", "") not in family.FAMILY_PRESETS:  # s at 100x100
         shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
             f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))

@@ -19,6 +19,9 @@ from benchmarks.harness import parse_progress
 from benchmarks.report import _fmt, _ratio, group, markdown_table, planner_order, problem_order
 from benchmarks.rows import RunRow
 
+PROGRESS_INTERVAL = 0.05
+"""Seconds between two samples of a run's best cost (OMPL's Benchmark's default
+``timeBetweenUpdates``)."""
 Z_95 = 1.959963984540054
 """The standard normal's 97.5th percentile: a two-sided 95% interval."""
 
@@ -28,12 +31,36 @@ def improvements(row: RunRow) -> tuple[tuple[float, float], ...]:
     that stops at its first solution) its first solution's time and its cost."""
     if not row.solved:
         return ()
-    found = parse_progress(f"x progress: {row.progress}")
+    found = progress_pairs(row)
     if found:
         return found
     first = row.first_solution_seconds if row.first_solution_seconds is not None \
         else row.time_seconds
     return ((first, row.best_cost),) if row.best_cost is not None else ()
+
+
+def progress_pairs(row: RunRow) -> tuple[tuple[float, float], ...]:
+    """The (seconds, cost) pairs of the row's ``progress`` field."""
+    return parse_progress(f"x progress: {row.progress}")
+
+
+def progress_samples(row: RunRow, interval: float = PROGRESS_INTERVAL
+                     ) -> list[tuple[float, float]]:
+    """(seconds, best cost) of an optimizing run: every improvement at its instant, and
+    the best cost so far every ``interval`` seconds from the first improvement to the
+    run's end (its planning time), as OMPL's Benchmark samples progress."""
+    improvements = progress_pairs(row)
+    if not improvements:
+        return []
+    samples = dict(improvements)
+    end = max(row.time_seconds, improvements[-1][0])
+    index, tick = 0, math.ceil(improvements[0][0] / interval)
+    while (at := round(tick * interval, 9)) <= end:  # 0.15, not 0.15000000000000002
+        while index + 1 < len(improvements) and improvements[index + 1][0] <= at:
+            index += 1
+        samples.setdefault(at, improvements[index][1])
+        tick += 1
+    return sorted(samples.items())
 
 
 def cost_at(row: RunRow, seconds: float) -> float:
@@ -75,13 +102,18 @@ def first_solution_median(runs: Sequence[RunRow]) -> float:
          else r.time_limit) for r in runs) if runs else math.nan
 
 
-def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float]) -> list[str]:
+def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],
+                      shortest: Mapping[str, float] | None = None) -> list[str]:
     """Per problem and planner: runs solved, median time to the first solution, the
-    median cost at each checkpoint (with its 95% interval) and ours over OMPL's."""
+    median cost at each checkpoint (with its 95% interval) and ours over OMPL's; with
+    ``shortest`` (the point vehicle's shortest path per problem), the median cost at
+    the last checkpoint over it."""
     times = [t for t in checkpoints if any(t <= r.time_limit for r in rows)]
+    shortest = shortest or {}
     header = ["System", "Problem", "Planner", "Solved", "First solution (s)",
               *(f"Cost at {t:g} s" for t in times),
-              *(f"vs OMPL at {t:g} s" for t in times), "First solution vs OMPL"]
+              *(f"vs OMPL at {t:g} s" for t in times), "First solution vs OMPL",
+              *([f"vs shortest at {times[-1]:g} s"] if shortest and times else [])]
     by_key = group(rows, "vehicle", "problem", "planner")
     body = []
     for vehicle, problem in _problems(rows):
@@ -97,7 +129,9 @@ def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float]) -> l
                              [cost_at(r, t) for r in theirs])[0]) if theirs else math.nan)
                            for m, t in zip(medians, times)),
                          _ratio(_over(first_solution_median(runs),
-                                      first_solution_median(theirs)) if theirs else math.nan)))
+                                      first_solution_median(theirs)) if theirs else math.nan),
+                         *([_ratio(_over(medians[-1][0], shortest.get(problem, math.nan)))
+                            if vehicle == "point" else "–"] if shortest and times else [])))
     return markdown_table(header, body, "lll" + "r" * (len(header) - 3))
 
 
@@ -120,8 +154,10 @@ def _with_interval(found: tuple[float, float, float]) -> str:
 
 
 def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
-                    checkpoints: Sequence[float]) -> str:
-    """The ``optimal*`` presets' report: the run's facts, then the convergence table."""
+                    checkpoints: Sequence[float],
+                    shortest: Mapping[str, float] | None = None) -> str:
+    """The ``optimal*`` presets' report: the run's facts, then the convergence table
+    (with ``shortest``, the point vehicle's median cost over its shortest path)."""
     out = [f"# Benchmark report: {meta.get('preset', 'optimal')} run, {meta.get('date', '')}",
            ""]
     out += [f"- {key}: {value}" for key, value in meta.items() if key not in ("preset", "date")]
@@ -131,7 +167,9 @@ def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
             "unsolved run counts as infinite, so a median exists once over half have "
             "solved), with its 95% confidence interval by order statistics in brackets. "
             "\"vs OMPL\" = our median over OMPL's same planner's (below 1 is better). "
-            "First solution: median over all runs, an unsolved run counting its limit.",
+            "First solution: median over all runs, an unsolved run counting its limit. "
+            "\"vs shortest\" (point vehicle) = the median cost at the last checkpoint over "
+            "the problem's shortest path (benchmarks/shortest_path.py; 1 is optimal).",
             "", "## Cost against time", ""]
-    out += convergence_table(rows, checkpoints) + [""]
+    out += convergence_table(rows, checkpoints, shortest) + [""]
     return "\n".join(out)

@@ -231,13 +231,9 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
                 caption: str):
     """Per problem, a panel: each solved run's cost against its planning time
     (``cost_name``: :func:`cost_of`'s)."""
-    from matplotlib import pyplot as plt
     vehicle = rows[0].vehicle
     cost, what = cost_name
-    columns = min(PANEL_COLUMNS, len(problems))
-    lines = -(-len(problems) // columns)
-    figure, grid = plt.subplots(lines, columns, figsize=(2.9 * columns + 2, 2.4 * lines),
-                                squeeze=False)
+    figure, grid = _panel_grid(len(problems))
     by_key = group([r for r in rows if r.solved and cost(r) is not None], "problem", "planner")
     planners = planner_order(p for (_, p) in by_key)
     for axes, problem in zip(grid.flat, problems):
@@ -249,6 +245,23 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
                              gid=f"cost-{vehicle}-{name}-{problem}")
         _log_seconds(axes, "x", [_seconds(r) for name in planners
                                   for r in by_key.get((problem, name), [])])
+    _label_panels(grid, problems, what)
+    _legend(grid[0, -1], planners, colours, vehicle)
+    return _titled(figure, caption)
+
+
+def _panel_grid(count: int):
+    """A figure of ``count`` panels, ``PANEL_COLUMNS`` to a line: (figure, axes grid)."""
+    from matplotlib import pyplot as plt
+    columns = min(PANEL_COLUMNS, count)
+    lines = -(-count // columns)
+    return plt.subplots(lines, columns, figsize=(2.9 * columns + 2, 2.4 * lines),
+                        squeeze=False)
+
+
+def _label_panels(grid, problems: Sequence[str], what: str) -> None:
+    """Each panel titled with its problem; the spare panels hidden; the axes named."""
+    for axes, problem in zip(grid.flat, problems):
         axes.set_title(problem, fontsize=9)
         axes.tick_params(labelsize=7)
         axes.grid(alpha=0.3)
@@ -258,8 +271,6 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
         axes.set_ylabel(what, fontsize=8)
     for axes in grid[-1, :]:
         axes.set_xlabel("planning time (s)", fontsize=8)
-    _legend(grid[0, -1], planners, colours, vehicle)
-    return _titled(figure, caption)
 
 
 def _first_seconds(row: RunRow) -> float:
@@ -298,14 +309,10 @@ def convergence_figure(rows: Sequence[RunRow], problems: Sequence[str], colours:
                        what: str, caption: str):
     """Per problem, a panel: each planner's median cost against planning time (a step
     line), its 95% confidence interval by order statistics as a band."""
-    from matplotlib import pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
     vehicle = rows[0].vehicle
-    columns = min(PANEL_COLUMNS, len(problems))
-    lines = -(-len(problems) // columns)
-    figure, grid = plt.subplots(lines, columns, figsize=(2.9 * columns + 2, 2.4 * lines),
-                                squeeze=False)
+    figure, grid = _panel_grid(len(problems))
     by_key = group(rows, "problem", "planner")
     planners = planner_order(r.planner for r in rows)
     for axes, problem in zip(grid.flat, problems):
@@ -328,15 +335,7 @@ def convergence_figure(rows: Sequence[RunRow], problems: Sequence[str], colours:
                       gid=f"median-{vehicle}-{name}-{problem}")
         _log_seconds(axes, "x", [start * 1.6, limit / 1.6])
         axes.set_ylim(top=top)
-        axes.set_title(problem, fontsize=9)
-        axes.tick_params(labelsize=7)
-        axes.grid(alpha=0.3)
-    for axes in grid.flat[len(problems):]:
-        axes.set_visible(False)
-    for axes in grid[:, 0]:
-        axes.set_ylabel(what, fontsize=8)
-    for axes in grid[-1, :]:
-        axes.set_xlabel("planning time (s)", fontsize=8)
+    _label_panels(grid, problems, what)
     key = [Line2D([], [], color="0.3", linewidth=1.8,
                   label="median over all runs (unsolved = infinite)"),
            Patch(color="0.3", alpha=0.2, label="95% CI of the median (order statistics)")]

@@ -8,7 +8,7 @@ Arena's loader reads the file): ``experiments`` (one per problem and vehicle, as
 (``harness_status`` and ``harness_planner`` for the fields whose names OMPL's loader
 gives other values), and ``progress``: an optimizing run's best cost over time, as
 OMPL's Benchmark samples its planners' ``best cost`` progress property (every
-``PROGRESS_INTERVAL`` seconds, from the first solution to the run's end), plus the
+``convergence.PROGRESS_INTERVAL`` seconds, from the first solution to the run's end), plus the
 instants of the improvements themselves, from which the row's ``progress`` field is
 rebuilt (that field has no column in ``runs``). A row is
 written, in its own transaction, as its run finishes; a run is known by problem,
@@ -22,14 +22,14 @@ from __future__ import annotations
 import dataclasses
 import functools
 import hashlib
-import math
 import platform
 import sqlite3
 from pathlib import Path
 
 from benchmarks.catalog import label
+from benchmarks.convergence import progress_samples
 from benchmarks.generator import problem_id
-from benchmarks.harness import RunSpec, parse_progress, progress_text
+from benchmarks.harness import RunSpec, progress_text
 from benchmarks.ompl_log import LIBRARY, PROPERTIES, STATUS_NAMES, VERSION, experiment_name
 from benchmarks.rows import FIELD_NAMES, RunRow
 from cli_common import parse_any_problem
@@ -51,9 +51,6 @@ _EXTRA_COLUMNS = tuple(
 _KEY = ("problem", "vehicle", "planner", "seed", "time_limit")
 _KEY_COLUMNS = tuple(_RENAMED.get(name, name) for name in _KEY)
 _RUN_TABLES = ("progress", "runs", "plannerConfigs", "experiments")
-PROGRESS_INTERVAL = 0.05
-"""Seconds between two samples of a run's best cost (OMPL's Benchmark's default
-``timeBetweenUpdates``)."""
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS experiments
@@ -209,25 +206,6 @@ class RunStore:
             return found[0]
         return self.db.execute("INSERT INTO plannerConfigs (name, settings) VALUES (?, ?)",
                                (name, settings)).lastrowid
-
-
-def progress_samples(row: RunRow, interval: float = PROGRESS_INTERVAL
-                     ) -> list[tuple[float, float]]:
-    """(seconds, best cost) of an optimizing run: every improvement at its instant, and
-    the best cost so far every ``interval`` seconds from the first improvement to the
-    run's end (its planning time), as OMPL's Benchmark samples progress."""
-    improvements = parse_progress(f"x progress: {row.progress}")
-    if not improvements:
-        return []
-    samples = dict(improvements)
-    end = max(row.time_seconds, improvements[-1][0])
-    index, tick = 0, math.ceil(improvements[0][0] / interval)
-    while tick * interval <= end:
-        while index + 1 < len(improvements) and improvements[index + 1][0] <= tick * interval:
-            index += 1
-        samples.setdefault(tick * interval, improvements[index][1])
-        tick += 1
-    return sorted(samples.items())
 
 
 def key_of(row: RunRow) -> tuple:

@@ -88,7 +88,7 @@ def test_a_fake_optimizing_run_reaches_the_row_the_store_and_the_table(tmp_path,
 def test_samples_hold_the_best_cost_so_far():
     run = optimizing("rrtstar", "p", 1, "0.12:4 0.31:2", limit=0.5)
     samples = progress_samples(run, interval=0.1)
-    assert samples == [(0.12, 4.0), (0.2, 4.0), (pytest.approx(0.3), 4.0), (0.31, 2.0),
+    assert samples == [(0.12, 4.0), (0.2, 4.0), (0.3, 4.0), (0.31, 2.0),
                        (0.4, 2.0), (0.5, 2.0)]
     assert progress_samples(made_up("rrt", "p", 1, 0.3)) == []  # no progress: no samples
 
@@ -101,6 +101,10 @@ def test_the_table_gives_medians_at_each_checkpoint_and_ratios_to_ompl():
     table = convergence.convergence_table(ours + theirs, (1.0, 10.0))
     # At 1 s: 3, 4 (an improvement at exactly 1 s counts), 7; at 10 s: 2, 1, 7.
     assert cells(table, "rrtstar (ours)")[3:] == ["3/3", "0.5", "4 [3, 7]", "2 [1, 7]", "0.50×", "0.40×", "5.00×"]
+    # Against the shortest path (point vehicle): the median at the last checkpoint.
+    table = convergence.convergence_table(ours + theirs, (1.0, 10.0), {"p": 1.6})
+    assert cells(table, "rrtstar (ours)")[-1] == "1.25×"
+    assert cells(table, "OMPL RRT*")[-1] == "3.12×"
 
 
 def test_an_unsolved_majority_has_no_median():
@@ -201,3 +205,22 @@ def test_ompl_optimizers_on_the_family_report_our_cost(planner, problem):
     # the last best cost OMPL reports is the validator's cost of the printed answer.
     assert pairs[-1][1] == pytest.approx(run.best_cost, rel=1e-8)
     assert pairs[0][0] == run.first_solution_seconds
+
+
+def test_ompl_log_reader_reads_the_progress_of_optimizing_runs(tmp_path):
+    tools = pytest.importorskip("ompl.tools")
+    from benchmarks.ompl_log import LogHeader, write_logs
+    rows = [optimizing(planner, "open-20", seed, progress, limit=1.0)
+            for planner in ("rrtstar", "ompl-rrtstar")
+            for seed, progress in ((1, "0.2:5 0.7:3"), (2, ""), (3, "0.12:4"))]
+    paths = write_logs(rows, tmp_path / "logs", LogHeader(hostname="h", date="d"))
+    database = tmp_path / "bench.db"
+    tools.readBenchmarkLog(str(database), [str(p) for p in paths], False)
+    with sqlite3.connect(database) as db:
+        found = db.execute("SELECT runs.seed, progress.time, progress.best_cost FROM progress "
+                           "JOIN runs ON runs.id = runid JOIN plannerConfigs ON "
+                           "plannerConfigs.id = runs.plannerid WHERE plannerConfigs.name = "
+                           "'rrtstar (ours)' ORDER BY runs.seed, progress.time").fetchall()
+    expected = [(seed, t, c) for seed, run in ((1, rows[0]), (3, rows[2]))
+                for t, c in progress_samples(run)]
+    assert found == expected and (1, 0.7, 3.0) in found and (3, 0.15, 4.0) in found
