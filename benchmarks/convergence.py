@@ -48,12 +48,13 @@ def progress_samples(row: RunRow, interval: float = PROGRESS_INTERVAL
                      ) -> list[tuple[float, float]]:
     """(seconds, best cost) of an optimizing run: every improvement at its instant, and
     the best cost so far every ``interval`` seconds from the first improvement to the
-    run's end (its planning time), as OMPL's Benchmark samples progress."""
+    run's end (its planning time, at most its time limit: times are the planner's
+    word), as OMPL's Benchmark samples progress."""
     improvements = progress_pairs(row)
     if not improvements:
         return []
     samples = dict(improvements)
-    end = max(row.time_seconds, improvements[-1][0])
+    end = min(max(row.time_seconds, improvements[-1][0]), row.time_limit)
     index, tick = 0, math.ceil(improvements[0][0] / interval)
     while (at := round(tick * interval, 9)) <= end:  # 0.15, not 0.15000000000000002
         while index + 1 < len(improvements) and improvements[index + 1][0] <= at:

@@ -91,6 +91,11 @@ def test_samples_hold_the_best_cost_so_far():
     assert samples == [(0.12, 4.0), (0.2, 4.0), (0.3, 4.0), (0.31, 2.0),
                        (0.4, 2.0), (0.5, 2.0)]
     assert progress_samples(made_up("rrt", "p", 1, 0.3)) == []  # no progress: no samples
+    # Times are the planner's word: samples stop at the time limit whatever it claims.
+    liar = dataclasses.replace(optimizing("rrtstar", "p", 1, "0.1:4 1e12:2", limit=1.0),
+                               planning_seconds=1e15)
+    samples = progress_samples(liar)
+    assert len(samples) == 20 and samples[-2:] == [(1.0, 4.0), (1e12, 2.0)]
 
 
 def test_the_table_gives_medians_at_each_checkpoint_and_ratios_to_ompl():
