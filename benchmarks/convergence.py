@@ -170,7 +170,9 @@ def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
             "\"vs OMPL\" = our median over OMPL's same planner's (below 1 is better). "
             "First solution: median over all runs, an unsolved run counting its limit. "
             "\"vs shortest\" (point vehicle) = the median cost at the last checkpoint over "
-            "the problem's shortest path (benchmarks/shortest_path.py; 1 is optimal).",
+            "the problem's shortest path to the goal point (benchmarks/shortest_path.py); "
+            "a path may end anywhere within the goal's 0.1 radius, so down to about "
+            "(shortest - 0.1) / shortest is possible.",
             "", "## Cost against time", ""]
     out += convergence_table(rows, checkpoints, shortest) + [""]
     return "\n".join(out)
