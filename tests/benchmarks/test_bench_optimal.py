@@ -229,3 +229,23 @@ def test_ompl_log_reader_reads_the_progress_of_optimizing_runs(tmp_path):
     expected = [(seed, t, c) for seed, run in ((1, rows[0]), (3, rows[2]))
                 for t, c in progress_samples(run)]
     assert found == expected and (1, 0.7, 3.0) in found and (3, 0.15, 4.0) in found
+
+
+def test_the_preset_picks_up_an_optimizing_planner_once_registered(monkeypatch):
+    from rrt_cli import planners
+    monkeypatch.setitem(planners.PLANNERS, "rrtstar", planners.PlannerEntry(
+        "rrt_cli.planners.rrt", planners.GEOMETRIC, "a stand-in", optimizing=True))
+    monkeypatch.setitem(planners.PLANNERS, "sst", planners.PlannerEntry(
+        "rrt_cli.planners.rrt", planners.KINODYNAMIC, "a stand-in", optimizing=True))
+    preset = optimal.OPTIMAL_PRESETS["optimal"]
+    chosen = {p.id: p for p in optimal.optimal_planners(preset, False, lambda line: None)}
+    assert sorted(chosen) == ["rrtstar", "sst"]
+    specs = optimal.optimal_specs(preset, list(chosen.values()), 2, 10.0)
+    runs = {(s.planner.id, s.vehicle.value if s.vehicle else "family", s.problem.stem)
+            for s in specs}
+    assert ("rrtstar", "point", "maze-10") in runs and ("rrtstar", "family", "arm2-pair3") in runs
+    assert ("sst", "left", "space-2") in runs and ("sst", "family", "car1-scene1") in runs
+    assert not {r for r in runs if r[0] == "rrtstar" and r[1] in ("spaceship", "left")}
+    assert not {r for r in runs if r[0] == "sst" and r[2].startswith(("arm2", "rigid2"))}
+    assert len(specs) == 2 * len(runs)
+    assert all(s.planner.command(s.vehicle, 1, 10.0)[-1] == "-optimize" for s in specs)
