@@ -32,6 +32,9 @@ class PlannerChoice:
     params: tuple[str, ...] = ()
     """``NAME=VALUE`` overrides of our planner's ``Params`` (run through
     ``benchmarks.planner_params``), e.g. ``("b=1",)`` for blossom."""
+    optimize: bool = False
+    """Run with ``-optimize``: keep improving until the time limit (the ``optimal*``
+    presets; the other presets time every planner to its first solution)."""
 
     def command(self, vehicle: Vehicle | None, seed: int, time_limit: float) -> list[str]:
         """The planner's command line; ``vehicle`` None for a kinoplan problem."""
@@ -41,7 +44,8 @@ class PlannerChoice:
             head = ["benchmarks.planner_params", *self.params] if self.params else ["rrt_cli"]
         flags = VEHICLE_FLAGS[vehicle] if vehicle is not None else ()
         return [sys.executable, "-m", *head, *flags, "-planner", self.cli_name, "-seed",
-                str(seed), "-time", repr(float(time_limit)), "-stats"]
+                str(seed), "-time", repr(float(time_limit)), "-stats",
+                *(("-optimize",) if self.optimize else ())]
 
 
 GEOMETRIC_SYSTEMS = ("arm2", "rigid2")
@@ -59,7 +63,8 @@ def label(planner_id: str, vehicle: str) -> str:
     kind = ("geometric" if vehicle in (Vehicle.POINT.value, *GEOMETRIC_SYSTEMS)
             else "control")
     return {"rrt": f"OMPL {kind} RRT", "rrtconnect": "OMPL RRTConnect",
-            "kpiece1": "OMPL control KPIECE1", "prm": "OMPL PRM"}.get(name, planner_id)
+            "kpiece1": "OMPL control KPIECE1", "prm": "OMPL PRM", "rrtstar": "OMPL RRT*",
+            "informed": "OMPL Informed RRT*", "sst": "OMPL SST"}.get(name, planner_id)
 
 
 def ompl_installed() -> bool:

@@ -42,7 +42,7 @@ import sys
 import time
 from pathlib import Path
 
-from benchmarks import catalog, family, generator, presets
+from benchmarks import catalog, family, generator, optimal, presets
 from benchmarks.family_report import markdown_report as family_markdown_report
 from benchmarks.html_report import html_report
 from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_on_sigterm,
@@ -64,9 +64,11 @@ def build_parser() -> argparse.ArgumentParser:
                                  "problems x seeds, and write CSV, Markdown, PDF and OMPL "
                                  "logs.")
     parser.add_argument("--preset", choices=sorted(presets.PRESETS) + sorted(
-                        family.FAMILY_PRESETS), default="quick",
+                        family.FAMILY_PRESETS) + sorted(optimal.OPTIMAL_PRESETS),
+                        default="quick",
                         help="which problems, vehicles, seeds and limits (default: quick); "
-                             "family*: the kinoplan family (SPEC 5)")
+                             "family*: the kinoplan family (SPEC 5); optimal*: cost against "
+                             "time of the optimizing planners")
     parser.add_argument("--vehicles", nargs="+", choices=[v.value for v in Vehicle],
                         help="only these vehicles of the preset")
     parser.add_argument("--planners", nargs="+", metavar="ID",
@@ -169,6 +171,27 @@ def build_family_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunS
             for seed in range(1, seeds + 1)]
 
 
+def build_optimal_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
+    """An optimal preset's runs: each planner on every problem of the preset it plans for."""
+    preset = optimal.OPTIMAL_PRESETS[args.preset]
+    return optimal.optimal_specs(
+        preset, planners, args.seeds if args.seeds is not None else preset.seeds,
+        args.time if args.time is not None else preset.time_limit,
+        tuple(args.problems or ()), tuple(args.vehicles or ()))
+
+
+def _markdown(rows, meta: dict, shortest) -> str:
+    """The report of the preset's kind: the family's, the optimal presets' or the grid's."""
+    name = meta.get("preset", "")
+    if name in family.FAMILY_PRESETS:
+        return family_markdown_report(rows, meta, family.FAMILY_PRESETS[name])
+    if name in optimal.OPTIMAL_PRESETS:
+        from benchmarks.convergence import markdown_report as convergence_report
+        return convergence_report(rows, meta, optimal.OPTIMAL_PRESETS[name].checkpoints,
+                                  shortest)
+    return markdown_report(rows, meta, shortest=shortest)
+
+
 def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:
     """runs.csv, report.md, report.html, meta.json, the OMPL logs and (``plots``) the
     plots, in plots.pdf and in report.html, from ``rows``; with ``yardstick`` the point
@@ -176,15 +199,13 @@ def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = Tr
     (no yardstick)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
-    family_preset = family.FAMILY_PRESETS.get(meta.get("preset", ""))
     shortest = None
-    if yardstick and family_preset is None:  # seconds at 100x100
+    if yardstick and meta.get("preset", "") not in family.FAMILY_PRESETS:  # s at 100x100
         shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
             f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"
-    markdown = (markdown_report(rows, meta, shortest=shortest) if family_preset is None
-                else family_markdown_report(rows, meta, family_preset))
+    markdown = _markdown(rows, meta, shortest)
     report.write_text(markdown + "\n")
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     header = LogHeader(hostname=meta.get("host", "unknown"), date=meta.get("date", ""),
@@ -220,7 +241,7 @@ def _check_args(parser: argparse.ArgumentParser, args: argparse.Namespace) -> No
     if args.vehicles and args.preset in family.FAMILY_PRESETS:
         parser.error("--vehicles is for the grid presets (a family problem names its "
                      "system: narrow with --problems)")
-    if args.max_size is not None and args.preset in family.FAMILY_PRESETS:
+    if args.max_size is not None and args.preset not in presets.PRESETS:
         parser.error("--max-size is for the grid presets")
     if args.scheduler and importlib.util.find_spec("distributed") is None:
         parser.error("--scheduler needs Dask's distributed (pip install distributed)")
@@ -256,6 +277,9 @@ def _choose_planners(parser: argparse.ArgumentParser, args: argparse.Namespace
         sys.stderr.write(f"benchmarks: note: {ompl_note}\n")
     if args.preset in family.FAMILY_PRESETS:
         planners = catalog.family_planners(not args.no_ompl)
+    elif args.preset in optimal.OPTIMAL_PRESETS:
+        planners = optimal.optimal_planners(optimal.OPTIMAL_PRESETS[args.preset],
+                                            not args.no_ompl)
     else:
         planners = catalog.all_planners(not args.no_ompl)
     if args.planners:
@@ -344,7 +368,9 @@ def main(argv: list[str] | None = None) -> int:
     if not args.no_generate and not is_family:
         _regenerate_suite()
     planners, ompl_note = _choose_planners(parser, args)
-    specs = (build_family_specs if is_family else build_specs)(args, planners)
+    build = (build_family_specs if is_family else build_optimal_specs
+             if args.preset in optimal.OPTIMAL_PRESETS else build_specs)
+    specs = build(args, planners)
     if not specs:
         parser.error("no runs selected (check --vehicles, --planners and --problems)")
 

@@ -16,6 +16,7 @@ and :func:`run_all` raises :class:`Interrupted` with the rows that finished.
 
 from __future__ import annotations
 
+import math
 import multiprocessing
 import os
 import re
@@ -38,6 +39,7 @@ from planning_core.vehicles import Vehicle
 
 LAUNCHER = Path(__file__).resolve().parent / "launch.py"
 _STATS_LINE = re.compile(r"^\S+ stats: (.*)$", re.MULTILINE)
+_PROGRESS_LINE = re.compile(r"^\S+ progress: (.*)$", re.MULTILINE)
 _EXIT_STATUS = {0: RunStatus.SOLVED, 2: RunStatus.BAD_INPUT, 3: RunStatus.NO_SOLUTION}
 _RUNNING: set[int] = set()
 """Process groups of the planners this process is running (the in-process path and a
@@ -76,6 +78,31 @@ def parse_stats(stderr_text: str) -> dict[str, str]:
     if not found:
         return {}
     return dict(item.split("=", 1) for item in found[-1].split() if "=" in item)
+
+
+def parse_progress(stderr_text: str) -> tuple[tuple[float, float], ...]:
+    """The (seconds, cost) pairs of the last ``<name> progress: SECONDS:COST ...`` line
+    on stderr, in time order, each cost below the one before; malformed, non-finite or
+    negative pairs, and pairs that improve nothing, are left out."""
+    found = _PROGRESS_LINE.findall(stderr_text)
+    pairs: list[tuple[float, float]] = []
+    for item in (found[-1].split() if found else ()):
+        try:
+            seconds, cost = (float(part) for part in item.split(":"))
+        except ValueError:
+            continue
+        if math.isfinite(seconds) and math.isfinite(cost) and seconds >= 0 and cost >= 0:
+            pairs.append((seconds, cost))
+    kept: list[tuple[float, float]] = []
+    for seconds, cost in sorted(pairs):
+        if not kept or cost < kept[-1][1]:
+            kept.append((seconds, cost))
+    return tuple(kept)
+
+
+def progress_text(pairs) -> str:
+    """``pairs`` as the progress line writes them (the RunRow's ``progress`` field)."""
+    return " ".join(f"{seconds!r}:{cost!r}" for seconds, cost in pairs)
 
 
 def _number(fields: dict[str, str], key: str, kind):
@@ -132,6 +159,7 @@ class _Outcome:
     corner_cuts: int = 0
     validation_seconds: float = 0.0
     path_duration: float | None = None
+    cost: float | None = None
 
 
 def run_one(spec: RunSpec, options: HarnessOptions = HarnessOptions()) -> RunRow:
@@ -243,7 +271,7 @@ def _validate(problem, vehicle: Vehicle | None, stdout_text: str, strict: bool) 
         failure = f"{first.message} {first.detail}".strip() if first else "invalid"
     return _Outcome(status, failure, report.valid, path_length, report.trajectory_count,
                     len(report.corner_cuts), validation_seconds,
-                    control_duration(problem, report) if report.valid else None)
+                    control_duration(problem, report) if report.valid else None, report.cost)
 
 
 def control_duration(problem, report) -> float | None:
@@ -286,7 +314,20 @@ def _row(spec: RunSpec, problem, finished: _Finished, stats: dict[str, str],
         iterations=_number(stats, "iterations", int),
         trajectory_lines=outcome.trajectory_lines, peak_memory_mb=finished.peak_memory_mb,
         corner_cuts=outcome.corner_cuts, validation_seconds=outcome.validation_seconds,
-        path_duration=outcome.path_duration)
+        path_duration=outcome.path_duration,
+        first_solution_seconds=_first_solution(stats, outcome),
+        best_cost=outcome.cost,
+        progress=progress_text(parse_progress(finished.stderr))
+        if outcome.status is RunStatus.SOLVED else "")
+
+
+def _first_solution(stats: dict[str, str], outcome: _Outcome) -> float | None:
+    """A solved run's first solution time: the stats line's, else (a planner that
+    stops at its first solution and does not say) its planning time."""
+    if outcome.status is not RunStatus.SOLVED:
+        return None
+    first = _number(stats, "first_solution_seconds", float)
+    return first if first is not None else _number(stats, "planning_seconds", float)
 
 
 def order_for_balance(specs: Iterable[RunSpec]) -> list[RunSpec]:

@@ -36,6 +36,9 @@ from planning_core.worlds.grid import GridWorld
 
 POINT_PLANNERS = ("rrt", "rrtconnect")
 SPACESHIP_PLANNERS = ("rrt", "kpiece1")
+OPTIMIZING_PLANNERS = ("rrtstar", "informed")
+"""OMPL's RRT* and Informed RRT* (point vehicle, arm2, rigid2): run by the ``optimal*``
+presets only, with ``-optimize`` (the other presets time first solutions)."""
 
 
 @dataclass(frozen=True)
@@ -64,10 +67,12 @@ class OmplResult:
     iterations: int             # planner loop iterations (termination-condition polls)
     tree_nodes: int
     planning_seconds: float
+    improvements: tuple[tuple[float, float], ...] = ()
+    """An optimizing planner's (planning seconds, best cost) at each improvement."""
 
 
 def planners_for(vehicle: Vehicle) -> tuple[str, ...]:
-    return SPACESHIP_PLANNERS if vehicle.is_spaceship else POINT_PLANNERS
+    return SPACESHIP_PLANNERS if vehicle.is_spaceship else POINT_PLANNERS + OPTIMIZING_PLANNERS
 
 
 def ompl_seed(seed: int) -> int:
@@ -112,31 +117,54 @@ def geometric_tree(ob, info, setup, get) -> tuple[int, tuple[tuple[float, ...], 
 
 
 def solve(problem: Problem, vehicle: Vehicle, planner: str, time_limit: float, seed: int,
-          params: OmplParams = OmplParams()) -> OmplResult:
+          params: OmplParams = OmplParams(), optimize: bool = False) -> OmplResult:
     """Plan with OMPL; ``planner`` is one of :func:`planners_for` ``(vehicle)``."""
     ob, oc, og = ompl_modules(planner, planners_for(vehicle), f"{vehicle.value} vehicle", seed)
     if vehicle.is_spaceship:
         return _solve_spaceship(ob, oc, problem, vehicle, planner, time_limit, params)
-    return _solve_point(ob, og, problem, planner, time_limit, params)
+    return _solve_point(ob, og, problem, planner, time_limit, params, optimize)
 
 
 class Termination:
-    """A termination condition that counts planner iterations and keeps the clock."""
+    """A termination condition that counts planner iterations and keeps the clock; with
+    ``best_cost`` (a function giving the planner's best cost so far), it also notes
+    each improvement's time since ``began`` as OMPL's Benchmark samples the ``best
+    cost`` progress property (which the bindings do not expose), at every poll."""
 
-    def __init__(self, time_limit: float):
+    def __init__(self, time_limit: float, best_cost=None, began: float | None = None):
+        self.began = time.perf_counter() if began is None else began
         self.deadline = time.perf_counter() + time_limit
         self.polls = 0
+        self.best_cost = best_cost
+        self.improvements: list[tuple[float, float]] = []
 
     def __call__(self) -> bool:
         self.polls += 1
-        return time.perf_counter() >= self.deadline
+        now = time.perf_counter()
+        if self.best_cost is not None:
+            cost = self.best_cost()
+            if math.isfinite(cost) and (not self.improvements or cost < self.improvements[-1][1]):
+                self.improvements.append((now - self.began, cost))
+        return now >= self.deadline
 
 
-def solve_with(ob, setup, planner, time_limit: float, timed: bool = False):
+def optimizing_planner(ob, og, info, setup, name: str, objective, optimize: bool):
+    """OMPL's RRT* or Informed RRT* (its defaults: k-nearest rewiring, goal bias 0.05)
+    minimizing ``objective``: until the time limit with ``optimize``, else until its
+    first solution (a cost threshold of infinity is met by any solution)."""
+    objective.setCostThreshold(ob.Cost(0.0 if optimize else math.inf))
+    setup.setOptimizationObjective(objective)
+    return (og.RRTstar if name == "rrtstar" else og.InformedRRTstar)(info)
+
+
+def solve_with(ob, setup, planner, time_limit: float, timed: bool = False,
+               began: float | None = None):
     """``planner`` on ``setup`` until ``time_limit``: (status, termination, solved).
-    ``timed``: OMPL's own timer instead of our counting condition (0 polls)."""
+    ``timed``: OMPL's own timer instead of our counting condition (0 polls). An
+    optimizing planner's improvements are noted (:class:`Termination`)."""
     setup.setPlanner(planner)
-    termination = Termination(time_limit)
+    best = getattr(planner, "bestCost", None)  # RRT* and Informed RRT*
+    termination = Termination(time_limit, best and (lambda: best().value()), began)
     condition = (ob.timedPlannerTerminationCondition(time_limit) if timed
                  else ob.PlannerTerminationCondition(termination))
     status = setup.solve(condition)
@@ -152,7 +180,7 @@ def make_bounds(ob, lows, highs):
 
 
 def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
-                 params: OmplParams) -> OmplResult:
+                 params: OmplParams, optimize: bool) -> OmplResult:
     began = time.perf_counter()
     world = GridWorld(problem)
     space = ob.RealVectorStateSpace(2)
@@ -173,14 +201,18 @@ def _solve_point(ob, og, problem: Problem, planner: str, time_limit: float,
     start[0], start[1] = problem.start
     goal[0], goal[1] = problem.goal
     setup.setStartAndGoalStates(start, goal, inside(params.goal_radius))
-    chosen = ompl_planner(og, planner, info, params.goal_bias)
-    status, termination, solved = solve_with(ob, setup, chosen, time_limit)
+    if planner in OPTIMIZING_PLANNERS:  # OMPL's path length is our cost here
+        chosen = optimizing_planner(ob, og, info, setup, planner,
+                                    ob.PathLengthOptimizationObjective(info), optimize)
+    else:
+        chosen = ompl_planner(og, planner, info, params.goal_bias)
+    status, termination, solved = solve_with(ob, setup, chosen, time_limit, began=began)
     trajectory = ()
     if solved:
         trajectory = tuple((s[0], s[1]) for s in setup.getSolutionPath().getStates())
     vertices, tree = geometric_tree(ob, info, setup, lambda s: (s[0], s[1]))
     return OmplResult(solved, status.asString(), trajectory, tree, termination.polls,
-                      vertices, time.perf_counter() - began)
+                      vertices, time.perf_counter() - began, tuple(termination.improvements))
 
 
 def inside(radius: float) -> float:

@@ -39,8 +39,9 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from benchmarks.ompl_adapters import (OmplResult, geometric_tree, inside, make_bounds,
-                                      ompl_modules, ompl_planner, solve_with)
+from benchmarks.ompl_adapters import (OPTIMIZING_PLANNERS, OmplResult, geometric_tree, inside,
+                                      make_bounds, ompl_modules, ompl_planner,
+                                      optimizing_planner, solve_with)
 
 if TYPE_CHECKING:  # imported where used: a grid problem's peer run should not load the family
     from planning_core.kinoplan import KinoplanProblem
@@ -58,7 +59,7 @@ class FamilyOmplParams:
 
 
 def planners_for_system(system) -> tuple[str, ...]:
-    return KINODYNAMIC_PLANNERS if system.kinodynamic else GEOMETRIC_PLANNERS
+    return KINODYNAMIC_PLANNERS if system.kinodynamic else GEOMETRIC_PLANNERS + OPTIMIZING_PLANNERS
 
 
 class Layout:
@@ -67,6 +68,9 @@ class Layout:
 
     def __init__(self, ob, space):
         self.space = ob.CompoundStateSpace()
+        self.exact_metric = True
+        """OMPL's distance is our metric (no group was split into one subspace per
+        variable)."""
         where: dict[int, str] = {}
         grouped = {i for indices, _ in space.groups for i in indices}
         parts = [(indices, weight) for indices, weight in space.groups]
@@ -76,6 +80,7 @@ class Layout:
         for indices, weight in parts:
             angles = [space.variables[i].angle for i in indices]
             if any(angles) and len(indices) > 1:  # per variable (see the module's note)
+                self.exact_metric = False
                 for i in indices:
                     self._add(ob, space, (i,), weight, where)
             else:
@@ -104,7 +109,8 @@ class Layout:
 
 
 def solve_family(problem: KinoplanProblem, planner: str, time_limit: float, seed: int,
-                 params: FamilyOmplParams = FamilyOmplParams()) -> OmplResult:
+                 params: FamilyOmplParams = FamilyOmplParams(),
+                 optimize: bool = False) -> OmplResult:
     """Plan with OMPL; ``planner`` is one of :func:`planners_for_system`."""
     system = problem.system
     ob, oc, og = ompl_modules(planner, planners_for_system(system), f"{system.name} system",
@@ -113,7 +119,8 @@ def solve_family(problem: KinoplanProblem, planner: str, time_limit: float, seed
     layout = Layout(ob, system.space)
     if system.kinodynamic:
         return _solve_kinodynamic(ob, oc, problem, layout, planner, time_limit, params, began)
-    return _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began)
+    return _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began,
+                            optimize)
 
 
 def _goal(ob, info, problem: KinoplanProblem, layout: Layout):
@@ -238,7 +245,29 @@ def _control_tree(data, get, held, dt) -> tuple[tuple[float, ...], ...]:
     return tuple(rows)
 
 
-def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began):
+def path_objective(ob, info, problem: KinoplanProblem, layout: Layout, informed: bool):
+    """Path length in our metric: OMPL's own objective where its distance is our metric
+    (rigid2), else (arm2) a Python objective that calls our metric. Informed RRT*
+    always gets the Python objective: OMPL's direct informed sampler for its own
+    objective takes only RealVector, SE2 and SE3 spaces, not our compound of subspaces
+    (it raises), while with another objective OMPL's Informed RRT* falls back to its
+    generic informed sampling."""
+    if layout.exact_metric and not informed:
+        return ob.PathLengthOptimizationObjective(info)
+    distance, get = problem.system.space.distance, layout.get
+
+    class OurPathLength(ob.OptimizationObjective):
+        def motionCost(self, a, b):
+            return ob.Cost(distance(get(a), get(b)))
+
+        def stateCost(self, state):
+            return ob.Cost(0.0)
+
+    return OurPathLength(info)
+
+
+def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began,
+                     optimize=False):
     from planning_core.kinoplan import state_validator
     system = problem.system
     info = ob.SpaceInformation(layout.space)
@@ -255,11 +284,16 @@ def _solve_geometric(ob, og, problem, layout, planner, time_limit, params, began
     setup = og.SimpleSetup(info)
     setup.setStartState(_start(layout, problem))
     setup.setGoal(_goal(ob, info, problem, layout))
-    chosen = ompl_planner(og, planner, info, params.goal_bias)
+    if planner in OPTIMIZING_PLANNERS:
+        chosen = optimizing_planner(ob, og, info, setup, planner,
+                                    path_objective(ob, info, problem, layout, planner == "informed"),
+                                    optimize)
+    else:
+        chosen = ompl_planner(og, planner, info, params.goal_bias)
     # PRM: OMPL's own timer (see the module's note: PRM's threads and a Python condition).
     status, termination, solved = solve_with(ob, setup, chosen, time_limit,
-                                             timed=planner == "prm")
+                                             timed=planner == "prm", began=began)
     trajectory = tuple(get(s) for s in setup.getSolutionPath().getStates()) if solved else ()
     vertices, tree = geometric_tree(ob, info, setup, get)
     return OmplResult(solved, status.asString(), trajectory, tree, termination.polls,
-                      vertices, time.perf_counter() - began)
+                      vertices, time.perf_counter() - began, tuple(termination.improvements))

@@ -9,8 +9,10 @@ plots:
 
 The layout follows ompl::tools::Benchmark::saveResultsToStream: a header
 (version, experiment, host, date, setup, random seed, limits, enum types),
-then per planner its settings, its run properties with SQL types, and one
-line per run with every value followed by ``"; "``.
+then per planner its settings, its run properties with SQL types, one line per
+run with every value followed by ``"; "``, and for optimizing runs the progress
+properties (``time``, ``best cost``) with one line per run of ``"t,c,;"`` samples
+(``convergence.progress_samples``: what runs.sqlite's progress table holds).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from pathlib import Path
 from typing import Sequence
 
 from benchmarks.catalog import label
+from benchmarks.convergence import progress_samples
 from benchmarks.report import group, planner_order
 from benchmarks.rows import RunRow, RunStatus
 
@@ -119,6 +122,11 @@ def format_log(rows: Sequence[RunRow], header: LogHeader) -> str:
         lines.append(f"{len(runs)} runs")
         for run in runs:
             lines.append("".join(f"{_value(get(run))}; " for _, _, get in PROPERTIES))
+        if any(run.progress for run in runs):
+            lines += ["2 progress properties for each run", "time REAL", "best cost REAL",
+                      f"{len(runs)} runs"]
+            lines += ["".join(f"{t!r},{c!r},;" for t, c in progress_samples(run))
+                      for run in runs]
         lines.append(".")
     return "\n".join(lines) + "\n"
 

@@ -69,6 +69,9 @@ def plots(rows: Sequence[RunRow], title: str = "") -> Iterator[Plot]:
     for vehicle in vehicles_of(rows):
         mine = [r for r in rows if r.vehicle == vehicle]
         heading = f"{title}{vehicle_title(vehicle)}"
+        if any(r.progress for r in mine):  # optimizing runs: their limit is their time
+            yield from convergence_plots(mine, colours, heading)
+            continue
         problems = problem_order(mine)
         for page, part, chunk in _chunks(problems, PROBLEMS_PER_FIGURE):
             caption = f"{heading}: planning time per problem{part}"
@@ -196,17 +199,18 @@ def _titled(figure, caption: str):
     return figure
 
 
-def success_figure(rows: Sequence[RunRow], colours: dict, caption: str):
-    """The share of runs solved within a planning time (every problem of the vehicle)."""
+def success_figure(rows: Sequence[RunRow], colours: dict, caption: str, seconds=_seconds):
+    """The share of runs solved within a planning time (every problem of the vehicle);
+    ``seconds``: a run's time to its (first) solution."""
     from matplotlib import pyplot as plt
     vehicle = rows[0].vehicle
     planners = planner_order(r.planner for r in rows)
     limit = max(r.time_limit for r in rows)
-    start = min([_seconds(r) for r in rows] + [limit]) / 2
+    start = min([seconds(r) for r in rows] + [limit]) / 2
     figure, axes = plt.subplots(figsize=(9, 4.2))
     for name in planners:
         runs = [r for r in rows if r.planner == name]
-        times = sorted(_seconds(r) for r in runs if r.solved)
+        times = sorted(seconds(r) for r in runs if r.solved)
         xs, ys = [start], [0.0]
         for count, t in enumerate(times, 1):
             xs += [t, t]
@@ -227,13 +231,9 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
                 caption: str):
     """Per problem, a panel: each solved run's cost against its planning time
     (``cost_name``: :func:`cost_of`'s)."""
-    from matplotlib import pyplot as plt
     vehicle = rows[0].vehicle
     cost, what = cost_name
-    columns = min(PANEL_COLUMNS, len(problems))
-    lines = -(-len(problems) // columns)
-    figure, grid = plt.subplots(lines, columns, figsize=(2.9 * columns + 2, 2.4 * lines),
-                                squeeze=False)
+    figure, grid = _panel_grid(len(problems))
     by_key = group([r for r in rows if r.solved and cost(r) is not None], "problem", "planner")
     planners = planner_order(p for (_, p) in by_key)
     for axes, problem in zip(grid.flat, problems):
@@ -245,6 +245,23 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
                              gid=f"cost-{vehicle}-{name}-{problem}")
         _log_seconds(axes, "x", [_seconds(r) for name in planners
                                   for r in by_key.get((problem, name), [])])
+    _label_panels(grid, problems, what)
+    _legend(grid[0, -1], planners, colours, vehicle)
+    return _titled(figure, caption)
+
+
+def _panel_grid(count: int):
+    """A figure of ``count`` panels, ``PANEL_COLUMNS`` to a line: (figure, axes grid)."""
+    from matplotlib import pyplot as plt
+    columns = min(PANEL_COLUMNS, count)
+    lines = -(-count // columns)
+    return plt.subplots(lines, columns, figsize=(2.9 * columns + 2, 2.4 * lines),
+                        squeeze=False)
+
+
+def _label_panels(grid, problems: Sequence[str], what: str) -> None:
+    """Each panel titled with its problem; the spare panels hidden; the axes named."""
+    for axes, problem in zip(grid.flat, problems):
         axes.set_title(problem, fontsize=9)
         axes.tick_params(labelsize=7)
         axes.grid(alpha=0.3)
@@ -254,8 +271,81 @@ def cost_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict, 
         axes.set_ylabel(what, fontsize=8)
     for axes in grid[-1, :]:
         axes.set_xlabel("planning time (s)", fontsize=8)
-    _legend(grid[0, -1], planners, colours, vehicle)
+
+
+def _first_seconds(row: RunRow) -> float:
+    first = row.first_solution_seconds
+    return max(first, FLOOR_SECONDS) if first is not None else _seconds(row)
+
+
+def convergence_plots(rows: Sequence[RunRow], colours: dict, heading: str) -> Iterator[Plot]:
+    """An optimizing run's figures: runs solved against time to the first solution,
+    and per problem the median cost against time with its 95% interval."""
+    vehicle = rows[0].vehicle
+    caption = f"{heading}: runs solved within a time (first solution)"
+    yield Plot(vehicle, caption, success_figure(rows, colours, caption, _first_seconds),
+               f"success-{vehicle}")
+    what = cost_of(rows)[1].replace("path length", "cost: path length").replace(
+        "control duration (s)", "cost: duration (s)")
+    for page, part, chunk in _chunks(problem_order(rows), PANELS_PER_FIGURE):
+        caption = f"{heading}: median {what} against planning time{part}"
+        yield Plot(vehicle, caption, convergence_figure(rows, chunk, colours, what, caption),
+                   f"convergence-{vehicle}-{page}")
+
+
+CONVERGENCE_POINTS = 120
+"""Times (log-spaced) at which a convergence curve is evaluated."""
+
+
+def _curve(runs: Sequence[RunRow], times: Sequence[float]):
+    """Median, low and high of the runs' costs at each time (NaN where infinite; an
+    unbounded high is NaN too, drawn at the panel's top)."""
+    from benchmarks.convergence import cost_at, median_interval
+    found = [median_interval([cost_at(r, t) for r in runs]) for t in times]
+    return [[v if math.isfinite(v) else math.nan for v in column] for column in zip(*found)]
+
+
+def convergence_figure(rows: Sequence[RunRow], problems: Sequence[str], colours: dict,
+                       what: str, caption: str):
+    """Per problem, a panel: each planner's median cost against planning time (a step
+    line), its 95% confidence interval by order statistics as a band."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    vehicle = rows[0].vehicle
+    figure, grid = _panel_grid(len(problems))
+    by_key = group(rows, "problem", "planner")
+    planners = planner_order(r.planner for r in rows)
+    for axes, problem in zip(grid.flat, problems):
+        mine = [r for r in rows if r.problem == problem]
+        limit = max(r.time_limit for r in mine)
+        start = min([_first_seconds(r) for r in mine if r.solved] + [limit]) / 1.2
+        times = [start * (limit / start) ** (k / (CONVERGENCE_POINTS - 1))
+                 for k in range(CONVERGENCE_POINTS)]
+        top = max([c for r in mine for _, c in _improvements(r)] + [1e-9]) * 1.05
+        for name in planners:
+            runs = by_key.get((problem, name))
+            if not runs:
+                continue
+            median, low, high = _curve(runs, times)
+            high = [top if math.isnan(h) and not math.isnan(m) else h
+                    for h, m in zip(high, median)]
+            axes.fill_between(times, low, high, step="post", color=colours[name], alpha=0.2,
+                              linewidth=0, gid=f"band-{vehicle}-{name}-{problem}")
+            axes.step(times, median, where="post", color=colours[name], linewidth=1.8,
+                      gid=f"median-{vehicle}-{name}-{problem}")
+        _log_seconds(axes, "x", [start * 1.6, limit / 1.6])
+        axes.set_ylim(top=top)
+    _label_panels(grid, problems, what)
+    key = [Line2D([], [], color="0.3", linewidth=1.8,
+                  label="median over all runs (unsolved = infinite)"),
+           Patch(color="0.3", alpha=0.2, label="95% CI of the median (order statistics)")]
+    _legend(grid[0, -1], planners, colours, vehicle, key)
     return _titled(figure, caption)
+
+
+def _improvements(row: RunRow):
+    from benchmarks.convergence import improvements
+    return improvements(row)
 
 
 def svg_text(plot: Plot) -> str:

@@ -60,6 +60,13 @@ class RunRow:
     validation_seconds: float
     path_duration: float | None = None
     """Kinodynamic family, solved runs: total control duration in seconds (sum of K x DT)."""
+    first_solution_seconds: float | None = None
+    """Planning time of the first solution (the stats line's); None when unsolved."""
+    best_cost: float | None = None
+    """Solved runs: the answer's cost as the validator computes it (planning_core.costs:
+    path length, or a kinodynamic family answer's duration)."""
+    progress: str = ""
+    """An optimizing run's improvements, ``SECONDS:COST ...`` (the progress line's)."""
 
     @property
     def time_seconds(self) -> float:
@@ -70,7 +77,8 @@ class RunRow:
 
 
 FIELD_NAMES = tuple(f.name for f in fields(RunRow))
-_ADDED_LATER = frozenset({"path_duration"})
+_ADDED_LATER = frozenset({"path_duration", "first_solution_seconds", "best_cost",
+                          "progress"})
 """Columns an older runs.csv may lack (read as their default)."""
 _TYPES = {f.name: f.type for f in fields(RunRow)}
 

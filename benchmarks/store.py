@@ -6,7 +6,11 @@ Arena's loader reads the file): ``experiments`` (one per problem and vehicle, as
 (the status names), ``runs``, whose columns are OMPL's run properties (``time``,
 ``solved``, ``memory``, ...) followed by every field of a :class:`RunRow` not among them
 (``harness_status`` and ``harness_planner`` for the fields whose names OMPL's loader
-gives other values), and ``progress`` (empty: no planner reports progress). A row is
+gives other values), and ``progress``: an optimizing run's best cost over time, as
+OMPL's Benchmark samples its planners' ``best cost`` progress property (every
+``convergence.PROGRESS_INTERVAL`` seconds, from the first solution to the run's end), plus the
+instants of the improvements themselves, from which the row's ``progress`` field is
+rebuilt (that field has no column in ``runs``). A row is
 written, in its own transaction, as its run finishes; a run is known by problem,
 vehicle, planner, seed and time limit. The store remembers what its runs were made
 with (:func:`code_fingerprint`: the source of our packages and ``--strict``); opened
@@ -23,8 +27,9 @@ import sqlite3
 from pathlib import Path
 
 from benchmarks.catalog import label
+from benchmarks.convergence import progress_samples
 from benchmarks.generator import problem_id
-from benchmarks.harness import RunSpec
+from benchmarks.harness import RunSpec, progress_text
 from benchmarks.ompl_log import LIBRARY, PROPERTIES, STATUS_NAMES, VERSION, experiment_name
 from benchmarks.rows import FIELD_NAMES, Closing, RunRow
 from cli_common import parse_any_problem
@@ -41,7 +46,8 @@ _SAME = {"process_time": "process_seconds", "solved": "solved", "correct_solutio
 """OMPL's columns that hold a RunRow field as it is (the field is not repeated)."""
 _EXTRA_COLUMNS = tuple(
     (_RENAMED.get(field.name, field.name), _SQL_TYPES[field.type.split(" ")[0]], field.name)
-    for field in dataclasses.fields(RunRow) if field.name not in _SAME.values())
+    for field in dataclasses.fields(RunRow)
+    if field.name not in _SAME.values() and field.name != "progress")
 _KEY = ("problem", "vehicle", "planner", "seed", "time_limit")
 _KEY_COLUMNS = tuple(_RENAMED.get(name, name) for name in _KEY)
 _RUN_TABLES = ("progress", "runs", "plannerConfigs", "experiments")
@@ -62,12 +68,13 @@ CREATE TABLE IF NOT EXISTS runs
     FOREIGN KEY (plannerid) REFERENCES plannerConfigs(id) ON DELETE CASCADE);
 CREATE UNIQUE INDEX IF NOT EXISTS runs_key ON runs ({", ".join(_KEY_COLUMNS)});
 CREATE TABLE IF NOT EXISTS progress
-    (runid INTEGER, time REAL, PRIMARY KEY (runid, time),
+    (runid INTEGER, time REAL, best_cost REAL, PRIMARY KEY (runid, time),
     FOREIGN KEY (runid) REFERENCES runs(id) ON DELETE CASCADE);
 CREATE TABLE IF NOT EXISTS harness (name TEXT PRIMARY KEY, value TEXT);
 """
 _RUNS_COLUMNS = ("id", "experimentid", "plannerid",
                  *(name for name, _, _ in _OMPL_COLUMNS + _EXTRA_COLUMNS))
+_PROGRESS_COLUMNS = ("runid", "time", "best_cost")
 PACKAGES = ("planning_core", "cli_common", "rrt_cli", "validator", "benchmarks")
 """Whose source a stored run's result depends on."""
 
@@ -92,7 +99,8 @@ class RunStore(Closing):
         self.db = sqlite3.connect(self.path, timeout=30)
         self.db.execute("PRAGMA FOREIGN_KEYS = ON")
         with self.db:
-            if self._columns("runs") not in ([], list(_RUNS_COLUMNS)):  # another layout
+            if (self._columns("runs") not in ([], list(_RUNS_COLUMNS))  # another layout
+                    or self._columns("progress") not in ([], list(_PROGRESS_COLUMNS))):
                 for table in _RUN_TABLES:
                     self.db.execute(f"DROP TABLE IF EXISTS {table}")
             self.db.executescript(_SCHEMA)
@@ -128,10 +136,24 @@ class RunStore(Closing):
         columns = {column: field for column, _, field in _EXTRA_COLUMNS}
         columns.update(_SAME)
         found = {}
-        for values in self.db.execute(f"SELECT {', '.join(map(_quoted, columns))} FROM runs"):
-            row = _to_row(dict(zip(columns.values(), values)))
+        progress = self._progress()
+        for run_id, *values in self.db.execute(
+                f"SELECT id, {', '.join(map(_quoted, columns))} FROM runs"):
+            record = dict(zip(columns.values(), values), progress=progress.get(run_id, ""))
+            row = _to_row(record)
             found[key_of(row)] = row
         return found
+
+    def _progress(self) -> dict[int, str]:
+        """Each run's improvements, rebuilt from its samples: the instants where its
+        best cost fell."""
+        pairs: dict[int, list[tuple[float, float]]] = {}
+        for run_id, seconds, cost in self.db.execute(
+                "SELECT runid, time, best_cost FROM progress ORDER BY runid, time"):
+            mine = pairs.setdefault(run_id, [])
+            if not mine or cost < mine[-1][1]:
+                mine.append((seconds, cost))
+        return {run_id: progress_text(found) for run_id, found in pairs.items()}
 
     def add(self, row: RunRow) -> None:
         """Store one finished run (replacing an earlier run of the same key)."""
@@ -143,11 +165,14 @@ class RunStore(Closing):
                             + " AND ".join(f"{k} = ?" for k in _KEY_COLUMNS), key_of(row))
             values = [get(row) for _, _, get in _OMPL_COLUMNS] + [
                 getattr(row, field) for _, _, field in _EXTRA_COLUMNS]
-            self.db.execute(
+            run_id = self.db.execute(
                 f"INSERT INTO runs (experimentid, plannerid, "
                 f"{', '.join(_quoted(name) for name, _, _ in columns)}) "
                 f"VALUES ({', '.join('?' for _ in range(len(columns) + 2))})",
-                [experiment, planner, *values])
+                [experiment, planner, *values]).lastrowid
+            self.db.executemany("INSERT INTO progress VALUES (?, ?, ?)",
+                                [(run_id, seconds, cost)
+                                 for seconds, cost in progress_samples(row)])
             self.db.execute("UPDATE experiments SET runcount = (SELECT COUNT(*) FROM runs "
                             "WHERE experimentid = ?1) WHERE id = ?1", (experiment,))
 

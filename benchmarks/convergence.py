@@ -1,0 +1,178 @@
+"""Cost against time for optimizing runs, and the ``optimal*`` presets' report.
+
+A run's cost at time t is the last improvement of its progress line at or before t
+(:func:`cost_at`); a run with no solution by then costs infinity, so the median over
+all runs is finite once more than half of them have solved, and a planner that
+solves less often cannot look better for it. The band around a median is its 95%
+confidence interval by order statistics (:func:`median_interval`: distribution-free,
+the ranks of a binomial(n, 1/2) around n/2).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+from typing import Mapping, Sequence
+
+from benchmarks.catalog import OMPL_PREFIX, label
+from benchmarks.harness import parse_progress
+from benchmarks.report import _fmt, _ratio, group, markdown_table, planner_order, problem_order
+from benchmarks.rows import RunRow
+
+PROGRESS_INTERVAL = 0.05
+"""Seconds between two samples of a run's best cost (OMPL's Benchmark's default
+``timeBetweenUpdates``)."""
+Z_95 = 1.959963984540054
+"""The standard normal's 97.5th percentile: a two-sided 95% interval."""
+
+
+def improvements(row: RunRow) -> tuple[tuple[float, float], ...]:
+    """A solved run's (seconds, cost) improvements: its progress line's, or (a planner
+    that stops at its first solution) its first solution's time and its cost."""
+    if not row.solved:
+        return ()
+    found = progress_pairs(row)
+    if found:
+        return found
+    first = row.first_solution_seconds if row.first_solution_seconds is not None \
+        else row.time_seconds
+    return ((first, row.best_cost),) if row.best_cost is not None else ()
+
+
+def progress_pairs(row: RunRow) -> tuple[tuple[float, float], ...]:
+    """The (seconds, cost) pairs of the row's ``progress`` field."""
+    return parse_progress(f"x progress: {row.progress}")
+
+
+def progress_samples(row: RunRow, interval: float = PROGRESS_INTERVAL
+                     ) -> list[tuple[float, float]]:
+    """(seconds, best cost) of an optimizing run: every improvement at its instant, and
+    the best cost so far every ``interval`` seconds from the first improvement to the
+    run's end (its planning time, at most its time limit: times are the planner's
+    word), as OMPL's Benchmark samples progress."""
+    improvements = progress_pairs(row)
+    if not improvements:
+        return []
+    samples = dict(improvements)
+    end = min(max(row.time_seconds, improvements[-1][0]), row.time_limit)
+    index, tick = 0, math.ceil(improvements[0][0] / interval)
+    while (at := round(tick * interval, 9)) <= end:  # 0.15, not 0.15000000000000002
+        while index + 1 < len(improvements) and improvements[index + 1][0] <= at:
+            index += 1
+        samples.setdefault(at, improvements[index][1])
+        tick += 1
+    return sorted(samples.items())
+
+
+def cost_at(row: RunRow, seconds: float) -> float:
+    """The run's best cost at ``seconds`` of planning: its last improvement at or before
+    then; infinity before its first solution or when it never solved."""
+    best = math.inf
+    for when, cost in improvements(row):
+        if when > seconds:
+            break
+        best = cost
+    return best
+
+
+def median_interval(values: Sequence[float], z: float = Z_95) -> tuple[float, float, float]:
+    """(median, low, high): the median and its confidence interval by order statistics,
+    the ``n/2 - z sqrt(n)/2``-th and ``1 + n/2 + z sqrt(n)/2``-th smallest values (ranks
+    rounded to the nearest, 1-based, clamped to 1..n: ranks 6 and 15 of 20, as the exact
+    binomial interval). Infinite values are allowed."""
+    data = sorted(values)
+    n = len(data)
+    if n == 0:
+        return math.nan, math.nan, math.nan
+    half = z * math.sqrt(n) / 2
+    low = min(n, max(1, round(n / 2 - half)))
+    high = min(n, max(1, round(1 + n / 2 + half)))
+    return statistics.median(data), data[low - 1], data[high - 1]
+
+
+def counterpart(planner: str) -> str | None:
+    """OMPL's planner our optimizing planner is compared with (``ompl-`` + its id)."""
+    return None if planner.startswith(OMPL_PREFIX) else OMPL_PREFIX + planner
+
+
+def first_solution_median(runs: Sequence[RunRow]) -> float:
+    """Median time to the first solution over all runs, an unsolved run counting its
+    time limit (as the other tables count an unsolved run's time)."""
+    return statistics.median(
+        (r.first_solution_seconds if r.solved and r.first_solution_seconds is not None
+         else r.time_limit) for r in runs) if runs else math.nan
+
+
+def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],
+                      shortest: Mapping[str, float] | None = None) -> list[str]:
+    """Per problem and planner: runs solved, median time to the first solution, the
+    median cost at each checkpoint (with its 95% interval) and ours over OMPL's; with
+    ``shortest`` (the point vehicle's shortest path per problem), the median cost at
+    the last checkpoint over it."""
+    times = [t for t in checkpoints if any(t <= r.time_limit for r in rows)]
+    shortest = shortest or {}
+    header = ["System", "Problem", "Planner", "Solved", "First solution (s)",
+              *(f"Cost at {t:g} s" for t in times),
+              *(f"vs OMPL at {t:g} s" for t in times), "First solution vs OMPL",
+              *([f"vs shortest at {times[-1]:g} s"] if shortest and times else [])]
+    by_key = group(rows, "vehicle", "problem", "planner")
+    body = []
+    for vehicle, problem in _problems(rows):
+        for planner in planner_order(p for (v, q, p) in by_key if (v, q) == (vehicle, problem)):
+            runs = by_key[(vehicle, problem, planner)]
+            theirs = by_key.get((vehicle, problem, counterpart(planner) or ""), [])
+            medians = [median_interval([cost_at(r, t) for r in runs]) for t in times]
+            body.append((vehicle, problem, label(planner, vehicle),
+                         f"{sum(r.solved for r in runs)}/{len(runs)}",
+                         _fmt(first_solution_median(runs)),
+                         *(_with_interval(m) for m in medians),
+                         *(_ratio(_over(m[0], median_interval(
+                             [cost_at(r, t) for r in theirs])[0]) if theirs else math.nan)
+                           for m, t in zip(medians, times)),
+                         _ratio(_over(first_solution_median(runs),
+                                      first_solution_median(theirs)) if theirs else math.nan),
+                         *([_ratio(_over(medians[-1][0], shortest.get(problem, math.nan)))
+                            if vehicle == "point" else "–"] if shortest and times else [])))
+    return markdown_table(header, body, "lll" + "r" * (len(header) - 3))
+
+
+def _problems(rows: Sequence[RunRow]) -> list[tuple[str, str]]:
+    seen = {(r.vehicle, r.problem) for r in rows}
+    return [(v, p) for v in sorted({v for v, _ in seen}) for p in problem_order(rows)
+            if (v, p) in seen]
+
+
+def _over(ours: float, theirs: float) -> float:
+    return ours / theirs if math.isfinite(ours) and math.isfinite(theirs) and theirs > 0 \
+        else math.nan
+
+
+def _with_interval(found: tuple[float, float, float]) -> str:
+    median, low, high = found
+    if not math.isfinite(median):
+        return "–"
+    return f"{_fmt(median)} [{_fmt(low)}, {_fmt(high) if math.isfinite(high) else '∞'}]"
+
+
+def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
+                    checkpoints: Sequence[float],
+                    shortest: Mapping[str, float] | None = None) -> str:
+    """The ``optimal*`` presets' report: the run's facts, then the convergence table
+    (with ``shortest``, the point vehicle's median cost over its shortest path)."""
+    out = [f"# Benchmark report: {meta.get('preset', 'optimal')} run, {meta.get('date', '')}",
+           ""]
+    out += [f"- {key}: {value}" for key, value in meta.items() if key not in ("preset", "date")]
+    out += ["", "Cost: path length (point, ships, arm2, rigid2) or duration (the family's "
+            "kinodynamic systems), as docs/optimal-planning.md defines it. \"Cost at t\" = "
+            "the median over all runs of each run's best cost at t s of planning (an "
+            "unsolved run counts as infinite, so a median exists once over half have "
+            "solved), with its 95% confidence interval by order statistics in brackets. "
+            "\"vs OMPL\" = our median over OMPL's same planner's (below 1 is better). "
+            "First solution: median over all runs, an unsolved run counting its limit. "
+            "\"vs shortest\" (point vehicle) = the median cost at the last checkpoint over "
+            "the problem's shortest path to the goal point (benchmarks/shortest_path.py); "
+            "a path may end anywhere within the goal's 0.1 radius, so down to about "
+            "(shortest - 0.1) / shortest is possible.",
+            "", "## Cost against time", ""]
+    out += convergence_table(rows, checkpoints, shortest) + [""]
+    return "\n".join(out)
