@@ -53,6 +53,10 @@ class RRTStarParams:
     rewire_factor: float = 1.1
     """Scales k = e (1 + 1/d) log(n + 1), the neighbours tried as parents and rewired
     (OMPL's 1.1: strictly above Karaman & Frazzoli's bound)."""
+    frontier_targets: float = 0.9
+    """Until the first solution, the share of targets drawn from the tree's frontier
+    where the world offers one (the grid: free cells without a node beside cells with
+    one, as RRT-Connect's); after it, none (the optimization draws as the paper's)."""
     partial_extension: bool = True
     """A blocked extension goes as far as it is free instead of adding nothing."""
     min_extension: float = 0.01
@@ -146,6 +150,10 @@ class StarSearch:
                  draw_target: Callable[[float], Optional[State]]) -> None:
         self.si, self.goal, self.rng = si, pdef.goal, rng
         self.goal_bias, self.rewire_factor = params.goal_bias, params.rewire_factor
+        self.frontier_share = params.frontier_targets
+        self.frontier = si.frontier() if self.frontier_share > 0.0 else None
+        if self.frontier is not None:
+            self.frontier.cover(pdef.start)
         self.draw_target = draw_target
         self.distance, self.first_hit = si.distance, si.first_hit
         self.steering = StraightLineSteering(si, params.partial_extension,
@@ -160,11 +168,7 @@ class StarSearch:
 
     def iterate(self) -> bool:
         """One iteration; True when the best solution became cheaper."""
-        goal_bias = self.goal_bias if not self.goal_nodes else 0.0
-        if goal_bias and uniform(self.rng) < goal_bias:
-            target: Optional[State] = self.si.goal_target(self.goal, self.rng)
-        else:
-            target = self.draw_target(self.best_cost)
+        target = self._target()
         if target is None:
             return False
         steered = self._steer(target)
@@ -177,11 +181,25 @@ class StarSearch:
         node = self.tree.add(parent, new, step)
         self.index.add(new)
         self.index_nodes.append(node)
+        if self.frontier is not None and not self.goal_nodes:
+            self.frontier.cover(new)
         changed = self._rewire(node, neighbours)
         if self.goal.reached(new):
             self.goal_nodes.append(node)
             changed = True
         return changed and self._update_best()
+
+    def _target(self) -> Optional[State]:
+        """Until a node is in the goal region: the goal (``goal_bias``), else a frontier
+        cell's point (``frontier_targets``); then ``draw_target``'s."""
+        rng = self.rng
+        if not self.goal_nodes:
+            if uniform(rng) < self.goal_bias:
+                return self.si.goal_target(self.goal, rng)
+            frontier = self.frontier
+            if frontier and uniform(rng) < self.frontier_share:
+                return frontier.sample(rng)
+        return self.draw_target(self.best_cost)
 
     def _steer(self, target: State) -> Optional[tuple[int, State]]:
         """The node nearest ``target`` and the new state steered from it, or None."""
