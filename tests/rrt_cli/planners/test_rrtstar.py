@@ -207,3 +207,21 @@ def test_a_start_in_the_goal_region_is_the_answer_alone():
     for module in MODULES.values():
         result = module.solve(setup.si, optimizing(setup), StopCondition(5), random.Random(1))
         assert result.status is PlanStatus.SOLVED and result.path == ((1.0, 1.0),)
+
+
+@pytest.mark.parametrize("problem", ["space-3", "arm2-pair1", "rigid2-scene1"])
+def test_both_planners_draw_alike_until_the_first_solution(problem):
+    # Informed RRT* differs only once a solution exists (the docs say so).
+    setup = setup_of(problem)
+    paths = {name: module.solve(setup.si, setup.pdef, StopCondition(30), random.Random(6)).path
+             for name, module in MODULES.items()}
+    assert paths["rrtstar"] == paths["informed"] and paths["rrtstar"]
+
+
+def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_iterations():
+    setup = grid_setup(parse_problem((ROOT / "benchmarks" / "problems" / "maze-50.sw")
+                                     .read_text()), "point")
+    found = [rrtstar.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=3000),
+                           random.Random(1), rrtstar.Params(frontier_targets=share)).solved
+             for share in (0.9, 0.0)]
+    assert found == [True, False]
