@@ -2,12 +2,13 @@
 planning", IJRR) with k-nearest rewiring, as OMPL's RRTstar runs by default, for
 the point vehicle and the geometric family (arm2, rigid2).
 
-Each iteration draws a target (the goal with probability ``goal_bias`` while no
-node is in the goal region, else a uniform state), takes the tree node nearest to
-it and steers toward it as RRT does (:class:`StraightLineSteering`: straight, at
-most ``extent_fraction`` of the space's extent, a blocked motion cut short
-``wall_clearance`` before its first invalid state). The new state's
-``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
+Each iteration draws a target (until a node is in the goal region: the goal with
+probability ``goal_bias``, else mostly a point of the tree's frontier where the world
+has one, ``frontier_targets``; otherwise, and always after, a uniform state), takes
+the tree node nearest to it and steers toward it as RRT does
+(:class:`StraightLineSteering`: straight, at most ``extent_fraction`` of the space's
+extent, a blocked motion cut short ``wall_clearance`` before its first invalid state).
+The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
 - *choose its parent*: the one through which its cost-to-come is least and whose
   motion to it is free (tried in order of that cost until one is: OMPL's delayed
   collision checking);
