@@ -114,6 +114,11 @@ class FamilyGeometricSpaceInformation(FamilySpaceInformation):
                 return state
         return None
 
+    def goal_center(self, goal) -> Optional[State]:
+        """The goal itself when it names every variable (its metric is then the
+        space's), else None."""
+        return goal.target if goal.full else None
+
     def free_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], State]:
         """``draw()``: a uniform valid configuration (rejection sampling; after
         ``VALID_SAMPLE_ATTEMPTS`` draws, the last one, valid or not)."""

@@ -104,6 +104,10 @@ class GridGeometricSpaceInformation:
         """Where a path ends: :meth:`goal_target`."""
         return self.world.printable_point(goal.point)
 
+    def goal_center(self, goal: Any) -> tuple[float, float]:
+        """The goal point itself (the region is the disc of the tolerance around it)."""
+        return (goal.point[0], goal.point[1])
+
     def certainly_unreachable(self, start: Sequence[float], goal: Any,
                               stop: Stop = None) -> bool:
         """No chain of free cells joins the start's and the goal's (8-connected)."""

@@ -19,6 +19,10 @@ State = tuple[float, ...]
 class Goal(Protocol):
     """A goal region."""
 
+    tolerance: float
+    """The largest :meth:`distance` of a state in the region (so ``distance - tolerance``
+    is a lower bound on the distance to the region: informed sampling's cost-to-go)."""
+
     def distance(self, state: Sequence[float]) -> float:
         """How far ``state`` is from the goal (the grid: by position; the family: the
         goal's metric)."""

@@ -59,6 +59,9 @@ class GeometricSpaceInformation(Protocol):
     wall_clearance: float
     """How far a motion cut short stops before its first invalid state (the grid:
     a map unit; the family: one check step)."""
+    space: Any
+    """The state space (``spaces.StateSpace``): bounds, angles and metric groups, whose
+    distance :meth:`distance` is never below (informed sampling's ellipsoid)."""
 
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The state space's distance; also the cost of the straight motion a -> b (a
@@ -91,6 +94,11 @@ class GeometricSpaceInformation(Protocol):
 
     def goal_configuration(self, goal: Goal, rng: random.Random) -> Optional[State]:
         """A valid state of the goal region where a path may end, or None."""
+
+    def goal_center(self, goal: Goal) -> Optional[State]:
+        """The state whose ball of ``goal.tolerance`` under :meth:`distance` is the goal
+        region (the grid: the goal point; the family: a goal that names every
+        variable), or None when the region is no such ball."""
 
     def certainly_unreachable(self, start: State, goal: Goal, stop: Stop = None) -> bool:
         """True only when it is proved that no motion joins start and goal."""

@@ -179,6 +179,17 @@ class StateSpace:
             total += weight * math.sqrt(squares)
         return total
 
+    def maximum_extent(self) -> float:
+        """The largest distance between two states (OMPL's ``getMaximumExtent``): per
+        group, its weight times the diagonal of its variables' box, an angle's side
+        pi (the farthest wrapped difference); inf when a grouped variable is unbounded."""
+        total = 0.0
+        for indices, weight, angles in self._plan:
+            sides = [math.pi if is_angle else self.variables[i].high - self.variables[i].low
+                     for i, is_angle in zip(indices, angles)]
+            total += weight * math.sqrt(math.fsum(side * side for side in sides))
+        return total
+
     def interpolate(self, a: State, b: State, t: float) -> State:
         """The state a fraction ``t`` of the way from ``a`` to ``b``.
 

@@ -62,4 +62,10 @@ PLANNERS: dict[str, PlannerEntry] = {
                         "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
     "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,
                             "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
+    "rrtstar": PlannerEntry("rrt_cli.planners.rrtstar", GEOMETRIC,
+                            "RRT*, k-nearest rewiring (Karaman & Frazzoli 2011)",
+                            optimizing=True),
+    "informed": PlannerEntry("rrt_cli.planners.informed", GEOMETRIC,
+                             "Informed RRT*, ellipsoidal informed sampling and pruning "
+                             "(Gammell et al. 2014)", optimizing=True),
 }

@@ -64,11 +64,12 @@ class PRMStarParams:
 Params = PRMStarParams
 
 
-def star_neighbor_count(vertices: int, dimension: int = DIMENSION) -> int:
-    """k = ceil(e (1 + 1/d) log n), at least 1."""
+def star_neighbor_count(vertices: int, dimension: int = DIMENSION, factor: float = 1.0) -> int:
+    """k = ceil(factor e (1 + 1/d) log n), at least 1 (RRT*'s too, with OMPL's rewire
+    factor)."""
     if vertices < 2:
         return 1
-    return max(1, math.ceil(math.e * (1.0 + 1.0 / dimension) * math.log(vertices)))
+    return max(1, math.ceil(factor * math.e * (1.0 + 1.0 / dimension) * math.log(vertices)))
 
 
 def log_neighbor_count(vertices: int) -> int:

@@ -1,4 +1,4 @@
-"""RRT, RRT-Connect, PRM and PRM* on the geometric family (arm2, rigid2; SPEC 5,
+"""RRT, RRT-Connect, PRM, PRM*, RRT* and Informed RRT* on the geometric family (arm2, rigid2; SPEC 5,
 issue 15): answers pass the validator's own checks (SPEC 5.5), motions are
 checked at exactly the validator's samples, -seed reproduces, -smooth shortens."""
 
@@ -19,7 +19,7 @@ from tests.planning_core.worlds.test_link_tests import count_calls
 from validator.checks import validate_plan
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
-GEOMETRIC_PLANNERS = ("rrt", "rrtconnect", "prm", "prmstar")
+GEOMETRIC_PLANNERS = ("rrt", "rrtconnect", "prm", "prmstar", "rrtstar", "informed")
 
 # Small problems: a circle in the arm's way, a wall in the body's.
 ARM = """kinoplan 1
@@ -162,7 +162,7 @@ def test_rrtconnect_targets_the_family_with_uniform_states_valid_or_not():
               params=rrtconnect.Params(free_space_targets=True))
 
 
-def test_registry_geometric_kinoplan_systems_have_four_planners():
+def test_registry_geometric_kinoplan_systems_have_six_planners():
     for name in ("arm2-pair1", "rigid2-scene1"):
         system = parse_kinoplan((FAMILY / f"{name}.kp").read_text()).system
         assert {planner for planner, entry in PLANNERS.items()

@@ -23,6 +23,7 @@ from rrt_cli.planners import PLANNERS
 from rrt_cli.planners.base import PlanStatus, StopCondition
 
 RUNS = [("point", "rrt"), ("point", "rrtconnect"), ("point", "prm"), ("point", "prmstar"),
+        ("point", "rrtstar"), ("point", "informed"),
         ("spaceship", "rrt"), ("spaceship", "kpiece"), ("spaceship", "rgrrt"),
         ("left", "rrt"), ("left", "kpiece"), ("left", "rgrrt")]
 FLAGS = {"point": [], "spaceship": ["-grad"], "left": ["-grad", "-left"]}
@@ -185,7 +186,11 @@ def expired() -> StopCondition:
     return StopCondition(time_limit=0.0)
 
 
-@pytest.mark.parametrize("vehicle,name", [run for run in RUNS if run[1] != "rrt"])
+TREE_PROOF = ("rrt", "rrtstar", "informed")
+"""Planners whose only set-up is the proof that start and goal are cut off."""
+
+
+@pytest.mark.parametrize("vehicle,name", [run for run in RUNS if run[1] not in TREE_PROOF])
 def test_planner_set_up_gives_way_to_an_expired_time_limit(vehicle, name):
     setup = grid_setup(nearly_open_map(300), vehicle)
     result = solve_on(PLANNERS[name].load(), setup, expired(), random.Random(1))
@@ -194,9 +199,10 @@ def test_planner_set_up_gives_way_to_an_expired_time_limit(vehicle, name):
     assert result.path == () and result.stats.iterations == 0
 
 
-def test_rrt_proof_gives_way_to_an_expired_time_limit():
+@pytest.mark.parametrize("name", TREE_PROOF)
+def test_rrt_proof_gives_way_to_an_expired_time_limit(name):
     setup = grid_setup(walled(300), "point")
-    result = solve_on(PLANNERS["rrt"].load(), setup, expired(), random.Random(1))
+    result = solve_on(PLANNERS[name].load(), setup, expired(), random.Random(1))
     assert result.status is PlanStatus.TIME_LIMIT and result.message == "during set-up"
 
 

@@ -1,0 +1,224 @@
+"""RRT* and Informed RRT* (point vehicle, arm2, rigid2): every answer passes the
+validator's own checks and every printed tree edge is free; rewiring never raises a
+cost-to-come and each node's cost is its parent's plus the motion's; with an
+objective the cost only falls; informed targets lie in the informed set and pruning
+keeps exactly what may still improve the answer; -seed reproduces bit for bit."""
+
+from __future__ import annotations
+
+import dataclasses
+import random
+
+import pytest
+
+from planning_core.costs import path_cost
+from planning_core.informed_sampling import InformedSampler
+from planning_core.kinoplan_text import parse_kinoplan
+from planning_core.plan_text import format_plan
+from planning_core.problem_definition import Objective
+from planning_core.problem_text import parse_problem
+from planning_core.setups import grid_setup, kinoplan_setup
+from rrt_cli.planners import PLANNERS, informed, rrtstar
+from rrt_cli.planners.base import PlanStatus, StopCondition
+from tests.conftest import COURSE_DIR, COURSE_PROBLEMS, ROOT, plan_in_process, seed_sweep
+from validator.checks import validate_plan
+
+FAMILY = ROOT / "benchmarks" / "problems" / "family"
+MODULES = {"rrtstar": rrtstar, "informed": informed}
+
+
+def setup_of(name: str):
+    """A course map's point setup (``space-2``) or a family problem's (``arm2-pair1``)."""
+    if (COURSE_DIR / f"{name}.sw").exists():
+        return grid_setup(parse_problem((COURSE_DIR / f"{name}.sw").read_text()), "point")
+    return kinoplan_setup(parse_kinoplan((FAMILY / f"{name}.kp").read_text()))
+
+
+def optimizing(setup, threshold: float = 0.0):
+    return dataclasses.replace(setup.pdef, objective=Objective(threshold))
+
+
+def assert_valid(setup, result):
+    """The validator's checks pass, every tree edge is free in the direction it was
+    grown and every node may be printed; the report (for its cost)."""
+    assert result.solved, (result.status, result.message)
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+    assert report.valid, report.first_failure
+    si = setup.si
+    for parent, _, child in result.edges:
+        assert si.first_hit(parent, child) is None
+        assert si.can_end_at(child)
+    return report
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+@pytest.mark.parametrize("path", COURSE_PROBLEMS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("seed", seed_sweep(range(20), fast=(0, 1)))
+def test_first_solutions_on_the_course_maps_are_valid(name, path, seed):
+    setup = grid_setup(parse_problem(path.read_text()), "point")
+    result = MODULES[name].solve(setup.si, setup.pdef, StopCondition(30), random.Random(seed))
+    report = assert_valid(setup, result)
+    stats = result.stats
+    assert len(stats.improvements) <= 1  # stops at the first (none: start in the goal)
+    if stats.improvements:
+        assert stats.first_solution_seconds == stats.improvements[0][0]
+        assert report.cost == pytest.approx(stats.improvements[0][1], rel=1e-12)
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+@pytest.mark.parametrize("problem", ["arm2-pair1", "rigid2-scene3", "space-1", "space-2",
+                                     "space-3"])
+@pytest.mark.parametrize("seed", seed_sweep(range(20), fast=(0,)))
+def test_optimized_answers_are_valid_and_their_cost_only_falls(name, problem, seed):
+    setup, module = setup_of(problem), MODULES[name]
+    first = module.solve(setup.si, setup.pdef, StopCondition(60), random.Random(seed))
+    iterations = first.stats.iterations + 400  # the same run, 400 iterations further
+    result = module.solve(setup.si, optimizing(setup),
+                          StopCondition(60, max_iterations=iterations), random.Random(seed))
+    report = assert_valid(setup, result)
+    assert result.stats.iterations == iterations  # went on past the first solution
+    seconds, costs = zip(*result.stats.improvements)
+    assert list(costs) == sorted(set(costs), reverse=True)  # each strictly cheaper
+    assert costs[0] == first.stats.improvements[0][1]  # the first answer, improved on
+    assert list(seconds) == sorted(seconds)
+    assert result.stats.first_solution_seconds == seconds[0]
+    assert report.cost == pytest.approx(costs[-1], rel=1e-12) and costs[-1] <= costs[0]
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_a_cost_threshold_ends_the_search_once_met(name):
+    setup = setup_of("space-2")
+    module = MODULES[name]
+    full = module.solve(setup.si, optimizing(setup), StopCondition(60, max_iterations=1500),
+                        random.Random(2))
+    costs = [cost for _, cost in full.stats.improvements]
+    assert len(costs) >= 3
+    met = module.solve(setup.si, optimizing(setup, costs[1]),
+                       StopCondition(60, max_iterations=1500), random.Random(2))
+    assert met.solved and met.stats.improvements == met.stats.improvements[:2]
+    assert path_cost(setup.si, met.path) == pytest.approx(costs[1])
+    assert met.stats.iterations < full.stats.iterations
+
+
+class Recorder:
+    """Snapshots a search's tree after each iteration and checks the invariants."""
+
+    def __init__(self, search, si):
+        self.search, self.si = search, si
+        self.costs = list(search.tree.costs)
+
+    def check(self):
+        tree, si = self.search.tree, self.si
+        for node, old in enumerate(self.costs):  # rewiring never raises a cost-to-come
+            if tree.alive[node]:
+                assert tree.costs[node] <= old
+        for node in range(1, len(tree.states)):
+            if tree.alive[node]:
+                parent = tree.parents[node]
+                assert tree.alive[parent] and node in tree.children[parent]
+                step = si.distance(tree.states[parent], tree.states[node])
+                assert tree.costs[node] == tree.costs[parent] + step
+        assert self.search.index_nodes == [n for n, live in enumerate(tree.alive) if live]
+        self.costs = list(tree.costs)
+
+
+@pytest.mark.parametrize("problem, iterations", [("space-2", 400), ("arm2-pair1", 400),
+                                                 ("rigid2-scene3", 1500)])
+def test_rewiring_never_raises_a_cost_and_costs_follow_the_tree(problem, iterations):
+    setup = setup_of(problem)
+    si, rng = setup.si, random.Random(3)
+    search = rrtstar.StarSearch(si, setup.pdef, rng, rrtstar.Params(),
+                                lambda best: si.sample_target(rng))
+    recorder, rewired = Recorder(search, si), 0
+    for _ in range(iterations):
+        before = list(search.tree.parents)
+        search.iterate()
+        rewired += sum(a != b for a, b in zip(before, search.tree.parents))
+        recorder.check()
+    assert rewired > 20  # the property was put to the test
+
+
+def test_informed_targets_lie_in_the_informed_set_and_pruning_keeps_what_may_improve():
+    setup = setup_of("space-2")
+    si, pdef, rng = setup.si, setup.pdef, random.Random(4)
+    sampler = InformedSampler(si, pdef, rng)
+    drawn = []
+
+    def draw(best):
+        state = sampler.sample(best)
+        drawn.append((best, state))
+        return state
+    search = rrtstar.StarSearch(si, pdef, rng, informed.Params(), draw)
+    pruning, recorder, pruned = informed.Pruning(sampler.heuristic, 0.05), Recorder(search, si), 0
+    for _ in range(1500):
+        if search.iterate():
+            size, last = search.tree.size, pruning.pruned_at
+            pruning(search)
+            pruned += size - search.tree.size
+            if pruning.pruned_at != last:  # it pruned (on a fall of over 5%)
+                assert_only_hopeless_nodes_were_dropped(search, sampler.heuristic)
+        recorder.check()
+    informed_draws = [(best, s) for best, s in drawn if best < float("inf") and s is not None]
+    assert len(informed_draws) > 100 and pruned > 0
+    assert all(sampler.heuristic(state) <= best for best, state in informed_draws)
+
+
+def assert_only_hopeless_nodes_were_dropped(search, heuristic):
+    """A live node lies within the pruning's bound or leads to one that does; the best
+    path is whole."""
+    tree, bound = search.tree, search.best_cost
+    hopeful = {n for n in range(len(tree.states))
+               if tree.alive[n] and heuristic(tree.states[n]) <= bound}
+    for node in range(len(tree.states)):
+        if tree.alive[node]:
+            stack, found = [node], False
+            while stack and not found:
+                here = stack.pop()
+                found = here in hopeful or here == search.best
+                stack.extend(tree.children[here])
+            assert found or node == 0
+    assert all(tree.alive[n] for n in tree.path_to(search.best))
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+@pytest.mark.parametrize("problem", ["space-2.sw", "arm2-pair1.kp"])
+def test_cli_seed_reproduces_an_optimized_answer_bit_for_bit(monkeypatch, name, problem):
+    path = COURSE_DIR / problem if problem.endswith(".sw") else FAMILY / problem
+    argv = ["-planner", name, "-seed", "3", "-optimize", "-iterations", "1000"]
+    status, out, err = plan_in_process(monkeypatch, argv, path.read_text())
+    assert status == 0 and err == "", err
+    assert plan_in_process(monkeypatch, argv, path.read_text())[1] == out
+    other = plan_in_process(monkeypatch, [*argv[:3], "4", *argv[4:]], path.read_text())[1]
+    assert other != out
+
+
+def test_registry_lines_are_optimizing_geometric_planners():
+    for name in MODULES:
+        entry = PLANNERS[name]
+        assert entry.optimizing and entry.load() is MODULES[name]
+        assert entry.plans_for(setup_of("space-1").si.system)
+
+
+def test_a_start_in_the_goal_region_is_the_answer_alone():
+    setup = grid_setup(parse_problem("4\n3\n____\n____\n____\n1.0\n1.0\n1.05\n1.0\n"), "point")
+    for module in MODULES.values():
+        result = module.solve(setup.si, optimizing(setup), StopCondition(5), random.Random(1))
+        assert result.status is PlanStatus.SOLVED and result.path == ((1.0, 1.0),)
+
+
+@pytest.mark.parametrize("problem", ["space-3", "arm2-pair1", "rigid2-scene1"])
+def test_both_planners_draw_alike_until_the_first_solution(problem):
+    # Informed RRT* differs only once a solution exists (the docs say so).
+    setup = setup_of(problem)
+    paths = {name: module.solve(setup.si, setup.pdef, StopCondition(30), random.Random(6)).path
+             for name, module in MODULES.items()}
+    assert paths["rrtstar"] == paths["informed"] and paths["rrtstar"]
+
+
+def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_iterations():
+    setup = grid_setup(parse_problem((ROOT / "benchmarks" / "problems" / "maze-50.sw")
+                                     .read_text()), "point")
+    found = [rrtstar.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=3000),
+                           random.Random(1), rrtstar.Params(frontier_targets=share)).solved
+             for share in (0.9, 0.0)]
+    assert found == [True, False]
