@@ -233,6 +233,7 @@ def test_ompl_log_reader_reads_the_progress_of_optimizing_runs(tmp_path):
 
 def test_the_preset_picks_up_an_optimizing_planner_once_registered(monkeypatch):
     from rrt_cli import planners
+    monkeypatch.delitem(planners.PLANNERS, "informed", raising=False)
     monkeypatch.setitem(planners.PLANNERS, "rrtstar", planners.PlannerEntry(
         "rrt_cli.planners.rrt", planners.GEOMETRIC, "a stand-in", optimizing=True))
     monkeypatch.setitem(planners.PLANNERS, "sst", planners.PlannerEntry(
