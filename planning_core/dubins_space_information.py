@@ -1,0 +1,186 @@
+"""The Dubins car on a grid as a :class:`~planning_core.space_information.GeometricSpaceInformation`:
+states are poses (x, y, heading), a motion is the shortest Dubins path
+(:mod:`planning_core.dubins`), so ``distance`` is that path's length and is
+directed (not symmetric, not a metric).
+
+A motion is checked along the very chords the output prints (the curve sampled at
+most ``SAMPLE_STEP`` apart, :meth:`DubinsCar.curve_positions`), each chord walked
+exactly through the grid's cells, each sample strictly inside the map: an answer
+that passes here passes the validator's point checks, ``-strict`` included.
+
+A state given as ``(x, y)`` has its heading free (the start; RRT-Connect's goal
+root). :meth:`reverse_state` turns a pose around, so that a tree grown backward from
+the goal (RRT-Connect) grows forward in reversed poses: the Dubins path a -> b,
+travelled backward, is the path reverse(b) -> reverse(a).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from typing import Any, Callable, Optional, Sequence
+
+from planning_core.dubins import mod2pi, sample_count
+from planning_core.interrupt import Stop
+from planning_core.nearest.index import NearestIndex
+from planning_core.samplers import uniform
+from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
+
+TWO_PI = 2.0 * math.pi
+
+
+class CurveHit:
+    """Where a curve first meets a blocked cell or the map's edge."""
+
+    def __init__(self, fraction: float) -> None:
+        self.fraction = fraction
+        """Of the curve's length, in (0, 1]."""
+
+
+class DubinsSpaceInformation:
+    """A Dubins car on a grid map: Dubins paths, checked chord by chord."""
+
+    def __init__(self, system: Any, world: GridWorld) -> None:
+        self.system = system
+        self.world = world
+        self.dimension = 3
+        self.rechecks_prefix = True
+        """A curve cut short is another Dubins path, with its own samples."""
+        self.lazy_edges = False
+        self.free_targets = True
+        """Uniform over the free cells, as the point vehicle's."""
+        self.wall_clearance = 1.0
+        """A curve cut short stops a map unit before the wall, as the point's."""
+        self.printable = world.point_strictly_inside
+
+    @property
+    def space(self) -> Any:
+        return self.system.state_space(self.world.width, self.world.height)
+
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The length of the shortest Dubins path a -> b (directed)."""
+        length: float = self.system.curve(a, b).length
+        return length
+
+    def interpolate(self, a: Sequence[float], b: Sequence[float],
+                    t: float) -> tuple[float, float, float]:
+        """The pose at fraction ``t`` of the Dubins path a -> b."""
+        curve = self.system.curve(a, b)
+        return curve.pose_at(curve.length * t)
+
+    def is_valid(self, state: Sequence[float]) -> bool:
+        return self.world.point_free(state[0], state[1])
+
+    def can_end_at(self, state: Sequence[float]) -> bool:
+        world = self.world
+        return (world.point_free(state[0], state[1])
+                and world.point_strictly_inside(state[0], state[1]))
+
+    def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
+        """The first chord of the curve a -> b that enters a blocked cell, or whose
+        end does not print strictly inside the map; None when the curve is free."""
+        curve = self.system.curve(a, b)
+        points = self.system.curve_positions(a, b, curve)
+        walk, inside = self.world.first_blocked_cell_on_segment, self.world.point_strictly_inside
+        x0, y0 = next(points)
+        pieces = sample_count(curve.length, SAMPLE_STEP)
+        for k, (x1, y1) in enumerate(points):
+            hit = walk(x0, y0, x1, y1)
+            if hit is not None:
+                return CurveHit(max((k + hit.fraction) / pieces, 1e-12))
+            if not inside(x1, y1):
+                return CurveHit((k + 1) / pieces)
+            x0, y0 = x1, y1
+        return None
+
+    def _heading(self, rng: random.Random) -> float:
+        return mod2pi(uniform(rng) * TWO_PI)
+
+    def sample_target(self, rng: random.Random) -> tuple[float, float, float]:
+        """A uniform position of the open map, then a uniform heading."""
+        x, y = self.world.sample_open_position(rng)
+        return (x, y, self._heading(rng))
+
+    def free_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        """``draw()``: a uniform free position, then a uniform heading."""
+        from planning_core.worlds.grid_cells import sample_free_point
+        free_cells, width = self.world.free_cell_indices(stop), self.world.width
+
+        def draw() -> tuple[float, float, float]:
+            x, y = sample_free_point(rng, free_cells, width)
+            return (x, y, self._heading(rng))
+
+        return draw
+
+    def roadmap_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        return self.free_sampler(rng, stop)
+
+    def new_nearest(self) -> DubinsNearest:
+        return DubinsNearest(self.distance, self.world.width, self.world.height)
+
+    def goal_target(self, goal: Any, rng: random.Random) -> tuple[float, float, float]:
+        """The goal point (nudged inside the map), with a uniform heading."""
+        x, y = self.world.printable_point(goal.point)
+        return (x, y, self._heading(rng))
+
+    def goal_configuration(self, goal: Any, rng: random.Random) -> tuple[float, float]:
+        """The goal point (nudged inside the map), its heading free. No ``rng``."""
+        return self.world.printable_point(goal.point)
+
+    @staticmethod
+    def reverse_state(state: Sequence[float]) -> tuple[float, ...]:
+        """The pose turned around (a free heading stays free)."""
+        if len(state) == 2:
+            return (state[0], state[1])
+        return (state[0], state[1], mod2pi(state[2] + math.pi))
+
+    def certainly_unreachable(self, start: Sequence[float], goal: Any,
+                              stop: Stop = None) -> bool:
+        """No chain of free cells joins the start's and the goal's (8-connected)."""
+        return self.world.certainly_disconnected(start, goal.point, stop)
+
+    def frontier(self) -> Any:
+        """None: a frontier's targets are positions, and a pose needs a heading."""
+        return None
+
+
+class DubinsNearest(NearestIndex):
+    """Nearest by the Dubins path length from a node to the query: the nodes in
+    order of straight distance (a quadtree), a lower bound of the Dubins length,
+    each re-ranked exactly until the next straight distance exceeds the best found.
+    Ties: the earliest node."""
+
+    FIRST_BATCH = 8
+
+    def __init__(self, distance: Callable[[Any, Any], float], width: float,
+                 height: float) -> None:
+        from planning_core.nearest.quadtree import QuadtreeNearest
+        self.index = QuadtreeNearest(width, height)
+        self.states: list[Any] = []
+        self.distance = distance
+
+    def add(self, state: Any) -> int:
+        self.states.append(state)
+        return self.index.add(state[0], state[1])
+
+    def nearest(self, query: Any) -> int:
+        return self.k_nearest(query, 1)[0]
+
+    def k_nearest(self, query: Any, k: int) -> list[int]:
+        """The ``k`` nodes nearest to ``query`` by the Dubins length, nearest first."""
+        states, distance = self.states, self.distance
+        exact: dict[int, float] = {}
+        batch = max(self.FIRST_BATCH, 2 * k)
+        while True:
+            found = self.index.k_nearest(query[0], query[1], batch)
+            for node in found:
+                if node not in exact:
+                    exact[node] = distance(states[node], query)
+            ranked = sorted(exact, key=lambda node: (exact[node], node))[:k]
+            if len(found) < batch:
+                return ranked
+            last = states[found[-1]]
+            bound = math.hypot(last[0] - query[0], last[1] - query[1])
+            if len(ranked) == k and bound > exact[ranked[-1]] * (1.0 + 1e-12):
+                return ranked
+            batch *= 4
