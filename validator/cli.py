@@ -138,10 +138,12 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
                 kinodynamic: bool | None = None) -> dict:
     """The JSON object; ``vehicle`` is a Vehicle, or a kinoplan system's name with
     ``kinodynamic`` saying whether check 7 applies."""
+    directed = False
     if isinstance(vehicle, Vehicle):
         kinodynamic = vehicle.is_spaceship
+        directed = getattr(vehicle.system, "directed", False)
     by_number = {check.number: check for check in report.checks} if report else {}
-    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic)))
+    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic), directed))
               for n, check in enumerate(CHECKS, 1)]
     failure = report.first_failure if report else None
     return {
