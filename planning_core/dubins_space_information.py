@@ -41,21 +41,29 @@ class DubinsSpaceInformation:
     """A Dubins car on a grid map: Dubins paths, checked chord by chord."""
 
     def __init__(self, system: Any, world: GridWorld) -> None:
+        from planning_core.grid_space_information import GridGeometricSpaceInformation
         self.system = system
         self.world = world
+        self.grid = grid = GridGeometricSpaceInformation(system, world)
+        """The point's answers where a pose's position is all that counts."""
+        self.is_valid, self.can_end_at = grid.is_valid, grid.can_end_at
+        self.goal_configuration = grid.goal_configuration
+        """The goal point (nudged inside the map), its heading free."""
+        self.certainly_unreachable = grid.certainly_unreachable
         self.dimension = 3
         self.rechecks_prefix = True
         """A curve cut short is another Dubins path, with its own samples."""
         self.lazy_edges = False
         self.free_targets = True
         """Uniform over the free cells, as the point vehicle's."""
-        self.wall_clearance = 1.0
-        """A curve cut short stops a map unit before the wall, as the point's."""
+        self.wall_clearance = grid.wall_clearance
+        """A curve cut short stops as far before the wall as the point's segment."""
         self.printable = world.point_strictly_inside
 
     @property
     def space(self) -> Any:
-        return self.system.state_space(self.world.width, self.world.height)
+        """SE(2) over the map (names and bounds)."""
+        return self.grid.space
 
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The length of the shortest Dubins path a -> b (directed)."""
@@ -67,14 +75,6 @@ class DubinsSpaceInformation:
         """The pose at fraction ``t`` of the Dubins path a -> b."""
         curve = self.system.curve(a, b)
         return curve.pose_at(curve.length * t)
-
-    def is_valid(self, state: Sequence[float]) -> bool:
-        return self.world.point_free(state[0], state[1])
-
-    def can_end_at(self, state: Sequence[float]) -> bool:
-        world = self.world
-        return (world.point_free(state[0], state[1])
-                and world.point_strictly_inside(state[0], state[1]))
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
         """The first chord of the curve a -> b that enters a blocked cell, or whose
@@ -123,21 +123,12 @@ class DubinsSpaceInformation:
         x, y = self.world.printable_point(goal.point)
         return (x, y, self._heading(rng))
 
-    def goal_configuration(self, goal: Any, rng: random.Random) -> tuple[float, float]:
-        """The goal point (nudged inside the map), its heading free. No ``rng``."""
-        return self.world.printable_point(goal.point)
-
     @staticmethod
     def reverse_state(state: Sequence[float]) -> tuple[float, ...]:
         """The pose turned around (a free heading stays free)."""
         if len(state) == 2:
             return (state[0], state[1])
         return (state[0], state[1], mod2pi(state[2] + math.pi))
-
-    def certainly_unreachable(self, start: Sequence[float], goal: Any,
-                              stop: Stop = None) -> bool:
-        """No chain of free cells joins the start's and the goal's (8-connected)."""
-        return self.world.certainly_disconnected(start, goal.point, stop)
 
     def frontier(self) -> Any:
         """None: a frontier's targets are positions, and a pose needs a heading."""

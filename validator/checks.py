@@ -839,6 +839,8 @@ def validate_plan(setup: Setup, output_text: str, strict: bool = False,
                               cost_kind="duration" if setup.rows_end_in_count else "length")
     if not report.valid:
         return report
+    if hasattr(setup.system, "row_names"):  # rows sample curves (the Dubins car): their polyline
+        return dataclasses.replace(report, cost=run.path_length)
     return dataclasses.replace(report, cost=answer_cost(setup.si, run.plan, run.final_state))
 
 

@@ -54,14 +54,19 @@ class DubinsCar:
         if not (math.isfinite(self.radius) and self.radius > 0.0):
             raise ValueError(f"the turning radius must be a positive number, got {self.radius!r}")
 
+    free_start_names: ClassVar[tuple[str, ...]] = ("heading",)
+    """Left out of the start state: the planner chooses them (a free heading)."""
+
     def state_space(self, width: float, height: float):
-        """The map's rectangle and the heading (SO(2)); the planners' metric is the
-        Dubins path length, not this space's."""
+        """The map's rectangle and the heading, SE(2) (bounds and names; the planners'
+        distance is the Dubins path length, not this space's)."""
         from planning_core.spaces import StateSpace
-        return StateSpace.real_vector(("x", "y"), (0.0, 0.0), (width, height))
+        return StateSpace.compound([StateSpace.real_vector(("x", "y"), (0.0, 0.0),
+                                                           (width, height)),
+                                    StateSpace.so2("heading")])
 
     def start_state(self, x: float, y: float) -> tuple[float, float]:
-        """The start, its heading free."""
+        """The start, its heading free (:attr:`free_start_names`)."""
         return (x, y)
 
     def curve(self, a: Sequence[float], b: Sequence[float]) -> dubins.DubinsPath:
