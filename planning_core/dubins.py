@@ -123,13 +123,18 @@ def _word_lengths(word: str, d: float, a: float, b: float) -> Optional[tuple[flo
     return (t, p, mod2pi(b - a - t + p))
 
 
-def word_path(word: str, a: Sequence[float], b: Sequence[float],
-              radius: float) -> Optional[DubinsPath]:
-    """The path of ``word`` from pose ``a`` to pose ``b``, or None where it has none."""
+def _frame(a: Sequence[float], b: Sequence[float], radius: float) -> tuple[float, float, float]:
+    """The normalised frame: the distance in radii, and both headings from the bearing."""
     dx, dy = b[0] - a[0], b[1] - a[1]
     d = math.hypot(dx, dy) / radius
     bearing = mod2pi(math.atan2(dy, dx)) if d > 0.0 else 0.0
-    lengths = _word_lengths(word, d, mod2pi(a[2] - bearing), mod2pi(b[2] - bearing))
+    return d, mod2pi(a[2] - bearing), mod2pi(b[2] - bearing)
+
+
+def word_path(word: str, a: Sequence[float], b: Sequence[float],
+              radius: float) -> Optional[DubinsPath]:
+    """The path of ``word`` from pose ``a`` to pose ``b``, or None where it has none."""
+    lengths = _word_lengths(word, *_frame(a, b, radius))
     if lengths is None:
         return None
     return DubinsPath((a[0], a[1], a[2]), word, lengths, radius)
@@ -144,12 +149,16 @@ def all_words(a: Sequence[float], b: Sequence[float], radius: float) -> list[Dub
 def shortest_between_poses(a: Sequence[float], b: Sequence[float],
                            radius: float) -> DubinsPath:
     """The shortest of the six words (ties: the first in :data:`WORDS`)."""
-    best: Optional[DubinsPath] = None
-    for path in all_words(a, b, radius):
-        if best is None or path.length < best.length:
-            best = path
+    frame = _frame(a, b, radius)
+    best, best_word, best_total = None, "", math.inf
+    for word in WORDS:
+        lengths = _word_lengths(word, *frame)
+        if lengths is not None:
+            total = lengths[0] + lengths[1] + lengths[2]
+            if total < best_total:
+                best, best_word, best_total = lengths, word, total
     assert best is not None  # LSL or RSR always exists (Dubins 1957)
-    return best
+    return DubinsPath((a[0], a[1], a[2]), best_word, best, radius)
 
 
 def _candidate_headings(bearing: float) -> Iterator[float]:

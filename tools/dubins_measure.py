@@ -3,7 +3,7 @@ vehicle and planner, SEEDS seeds of ``./run.sh ... -stats``; success, median pla
 time and median path length (the -stats cost), each answer checked by the validator's
 own checks (the turning check included). Prints a Markdown table.
 
-    python tools/dubins_measure.py [SEEDS] [TIME]    # docs/dubins.md: 20 seeds, 10 s
+    python tools/dubins_measure.py [SEEDS] [TIME] [GLOB]   # docs/dubins.md: 20 seeds
 """
 
 from __future__ import annotations
@@ -59,9 +59,10 @@ def measure(path: Path, planner: str, seeds: int, limit: str) -> list[str]:
 def main() -> None:
     seeds = int(sys.argv[1]) if len(sys.argv) > 1 else 20
     limit = sys.argv[2] if len(sys.argv) > 2 else "10"
+    pattern = sys.argv[3] if len(sys.argv) > 3 else "*.sw"
     print("| map | vehicle | planner | solved | median s | median length |")
     print("|---|---|---|---|---|---|")
-    for path in sorted((ROOT / "benchmarks" / "problems" / "course").glob("*.sw")):
+    for path in sorted((ROOT / "benchmarks" / "problems" / "course").glob(pattern)):
         for planner in ("rrt", "rrtconnect"):
             for row in measure(path, planner, seeds, limit):
                 print(row, flush=True)
