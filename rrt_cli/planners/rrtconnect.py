@@ -218,22 +218,24 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         if limit is not None:
             return result(limit, (), iterations)
         iterations += 1
-        path = _extend_and_connect(grower, active, other, start_tree, draw_target(), si)
+        path = _extend_and_connect(grower, active, other, start_tree, draw_target(), si, stop)
         if path is not None:
             return result(PlanStatus.SOLVED, path, iterations)
         active, other = other, active
 
 
 def _extend_and_connect(grower: _Grower, active: _Tree, other: _Tree, start_tree: _Tree,
-                        target, si: GeometricSpaceInformation) -> list | None:
-    """Extend ``active`` toward ``target``, then connect ``other`` to the new node;
-    the path from start to goal when they meet."""
+                        target, si: GeometricSpaceInformation,
+                        stop: StopCondition) -> list | None:
+    """Extend ``active`` toward ``target``, then connect ``other`` to the new node
+    (until the time is up: a directed system's steps need not get nearer); the path
+    from start to goal when they meet."""
     outcome, added = grower.grow(active, target)
     if outcome is _Grow.TRAPPED:
         return None
     meeting = active.flip(active.states[added])
     connect = _Grow.ADVANCED
-    while connect is _Grow.ADVANCED:
+    while connect is _Grow.ADVANCED and not stop.time_is_up():
         connect, reached = grower.grow(other, meeting, connecting=True)
     if connect is not _Grow.REACHED:
         return None
