@@ -22,7 +22,6 @@ from typing import Any, Callable, Optional, Sequence
 
 from planning_core.dubins import mod2pi, sample_count
 from planning_core.interrupt import Stop
-from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
 from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
 
@@ -115,7 +114,9 @@ class DubinsSpaceInformation:
     def roadmap_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
         return self.free_sampler(rng, stop)
 
-    def new_nearest(self) -> DubinsNearest:
+    def new_nearest(self) -> Any:
+        """Nearest by the Dubins length to the query (:class:`DubinsNearest`)."""
+        from planning_core.nearest.directed import DubinsNearest
         return DubinsNearest(self.distance, self.world.width, self.world.height)
 
     def goal_target(self, goal: Any, rng: random.Random) -> tuple[float, float, float]:
@@ -133,45 +134,3 @@ class DubinsSpaceInformation:
     def frontier(self) -> Any:
         """None: a frontier's targets are positions, and a pose needs a heading."""
         return None
-
-
-class DubinsNearest(NearestIndex):
-    """Nearest by the Dubins path length from a node to the query: the nodes in
-    order of straight distance (a quadtree), a lower bound of the Dubins length,
-    each re-ranked exactly until the next straight distance exceeds the best found.
-    Ties: the earliest node."""
-
-    FIRST_BATCH = 8
-
-    def __init__(self, distance: Callable[[Any, Any], float], width: float,
-                 height: float) -> None:
-        from planning_core.nearest.quadtree import QuadtreeNearest
-        self.index = QuadtreeNearest(width, height)
-        self.states: list[Any] = []
-        self.distance = distance
-
-    def add(self, state: Any) -> int:
-        self.states.append(state)
-        return self.index.add(state[0], state[1])
-
-    def nearest(self, query: Any) -> int:
-        return self.k_nearest(query, 1)[0]
-
-    def k_nearest(self, query: Any, k: int) -> list[int]:
-        """The ``k`` nodes nearest to ``query`` by the Dubins length, nearest first."""
-        states, distance = self.states, self.distance
-        exact: dict[int, float] = {}
-        batch = max(self.FIRST_BATCH, 2 * k)
-        while True:
-            found = self.index.k_nearest(query[0], query[1], batch)
-            for node in found:
-                if node not in exact:
-                    exact[node] = distance(states[node], query)
-            ranked = sorted(exact, key=lambda node: (exact[node], node))[:k]
-            if len(found) < batch:
-                return ranked
-            last = states[found[-1]]
-            bound = math.hypot(last[0] - query[0], last[1] - query[1])
-            if len(ranked) == k and bound > exact[ranked[-1]] * (1.0 + 1e-12):
-                return ranked
-            batch *= 4

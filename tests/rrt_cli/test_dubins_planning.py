@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from planning_core.dubins_space_information import DubinsNearest
+from planning_core.nearest.directed import DubinsNearest
 from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup
 from planning_core.systems.dubins import DubinsOptions
