@@ -237,26 +237,51 @@ def add_switches(parser, switches: dict[str, str]) -> None:
 
 
 def add_vehicle_flags(parser: argparse.ArgumentParser, title: str) -> None:
-    """The course's vehicle flags, spelled as the course spells them."""
-    add_switches(parser.add_argument_group(title), {
+    """The course's vehicle flags, spelled as the course spells them, and the Dubins car's."""
+    group = parser.add_argument_group(title)
+    add_switches(group, {
         "-ugrad": "point vehicle <x, y> moving straight (the default)",
         "-grad": "spaceship <x, y, dx, dy> with thrust <theta, s>",
-        "-left": "spaceship that only thrusts ahead or left (implies -grad)"})
+        "-left": "spaceship that only thrusts ahead or left (implies -grad)",
+        "-dubins": "Dubins car <x, y, heading>: forward only, turning radius -radius; "
+                   "printed as its curves sampled at most 0.05 apart (point rows)"})
+    group.add_argument("-radius", type=positive_float, default=None, metavar="R",
+                       help="with -dubins: the least turning radius in map units "
+                            "(default: 0.5)")
 
 
 def vehicle_from_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> Vehicle:
-    """The vehicle the -ugrad/-grad/-left flags name; a contradiction is a usage error."""
+    """The vehicle the -ugrad/-grad/-left/-dubins flags name; a contradiction, or
+    -radius without -dubins, is a usage error."""
     if args.ugrad and (args.grad or args.left):
         parser.error("-ugrad cannot be combined with -grad or -left")
+    if args.dubins and (args.ugrad or args.grad or args.left):
+        parser.error("-dubins cannot be combined with -ugrad, -grad or -left")
+    if args.radius is not None and not args.dubins:
+        parser.error("-radius is the Dubins car's turning radius: it needs -dubins")
+    if args.dubins:
+        return Vehicle.DUBINS
     if args.left:
         return Vehicle.LEFT_SPACESHIP
     return Vehicle.SPACESHIP if args.grad else Vehicle.POINT
 
 
+def vehicle_options(args: argparse.Namespace):
+    """What ``planning_core.setups.grid_setup`` takes for the flags' vehicle: the
+    Dubins car's radius; None for the others."""
+    if not args.dubins:
+        return None
+    from planning_core.systems.dubins import DubinsOptions
+    return DubinsOptions() if args.radius is None else DubinsOptions(args.radius)
+
+
 def reject_vehicle_flags(parser: OneLineErrorParser, args: argparse.Namespace) -> None:
-    """``-grad``, ``-ugrad``, ``-left`` name a grid vehicle: with a kinoplan problem
-    (its ``system`` line names the system) they are a usage error, exit 2."""
-    given = [flag for flag in ("-ugrad", "-grad", "-left") if getattr(args, flag[1:])]
+    """``-grad``, ``-ugrad``, ``-left``, ``-dubins``, ``-radius`` name a grid vehicle:
+    with a kinoplan problem (its ``system`` line names the system) they are a usage
+    error, exit 2."""
+    given = [flag for flag in ("-ugrad", "-grad", "-left", "-dubins")
+             if getattr(args, flag[1:])]
+    given += ["-radius"] if args.radius is not None else []
     if given:
         parser.error(f"{' '.join(given)}: a kinoplan problem names its own system "
                      "(the vehicle flags are for .sw problems)")

@@ -5,6 +5,7 @@ way for the planner and the validator so that their numbers agree bit for bit.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Union
 
@@ -39,9 +40,10 @@ class Setup:
 
 
 def grid_setup(problem: Any, system_name: Any, options: Any = None) -> Setup:
-    """A ``.sw`` problem for the named system (``point``, ``spaceship``, ``left``; a
-    :class:`~planning_core.vehicles.Vehicle` names one too). ``options``: a ship's
-    :class:`~planning_core.grid_space_information.GridControlOptions`."""
+    """A ``.sw`` problem for the named system (``point``, ``spaceship``, ``left``,
+    ``dubins``; a :class:`~planning_core.vehicles.Vehicle` names one too). ``options``:
+    a ship's :class:`~planning_core.grid_space_information.GridControlOptions`; the
+    Dubins car's :class:`~planning_core.systems.dubins.DubinsOptions` (its radius)."""
     from planning_core.goal import GoalRegion
     from planning_core.grid_space_information import (GridControlOptions,
                                                       GridControlSpaceInformation,
@@ -53,6 +55,11 @@ def grid_setup(problem: Any, system_name: Any, options: Any = None) -> Setup:
     if system.kinodynamic:
         si: SpaceInformation = GridControlSpaceInformation(system, world,
                                                            options or GridControlOptions())
+    elif getattr(system, "directed", False):
+        from planning_core.dubins_space_information import DubinsSpaceInformation
+        if options is not None:
+            system = dataclasses.replace(system, radius=options.radius)
+        si = DubinsSpaceInformation(system, world)
     else:
         si = GridGeometricSpaceInformation(system, world)
     pdef = ProblemDefinition(system.start_state(*problem.start), GoalRegion(problem.goal))

@@ -28,7 +28,7 @@ import cli_common
 from cli_common import (EXIT_USAGE, add_vehicle_flags, bounded_integer, describe_os_error,
                         is_kinoplan, parse_any_problem, positive_float, positive_int,
                         read_problem_from_stdin, reject_vehicle_flags, reserve_standard_fds,
-                        say, vehicle_from_flags, write_stdout)
+                        say, vehicle_from_flags, vehicle_options, write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.problem_definition import Objective
 from planning_core.setups import grid_setup, kinoplan_setup
@@ -91,10 +91,11 @@ def _known_planner(name: str) -> str:
     return name
 
 
-_SWITCHES = ("-ugrad", "-grad", "-left", "-smooth", "-stats", "-optimize")
+_SWITCHES = ("-ugrad", "-grad", "-left", "-dubins", "-smooth", "-stats", "-optimize")
 _VALUED = {"-planner": _known_planner, "-seed": seed, "-time": positive_float,
-           "-iterations": positive_int, "-cost": positive_float}
-_DEFAULTS = {"ugrad": False, "grad": False, "left": False, "smooth": False, "stats": False,
+           "-iterations": positive_int, "-cost": positive_float, "-radius": positive_float}
+_DEFAULTS = {"ugrad": False, "grad": False, "left": False, "dubins": False, "radius": None,
+             "smooth": False, "stats": False,
              "optimize": False, "cost": None, "planner": DEFAULT_PLANNER, "seed": None,
              "time": DEFAULT_TIME_LIMIT, "iterations": DEFAULT_ITERATIONS}
 
@@ -148,7 +149,7 @@ def _setup(parser, args, entry):
         say(f"rrt_cli: error: planner {args.planner!r} stops at its first solution; "
             f"-optimize and -cost work with -planner {optimizing}")
         return None
-    flags_given = args.ugrad or args.grad or args.left
+    flags_given = args.ugrad or args.grad or args.left or args.dubins
     if flags_given and not entry.plans_for(vehicle.system):  # refused before reading stdin
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
             f"{vehicle.value} vehicle")
@@ -170,7 +171,7 @@ def _setup(parser, args, entry):
         say(f"rrt_cli: error: planner {args.planner!r} does not support the "
             f"{vehicle.value} vehicle")
         return None
-    return grid_setup(problem, vehicle.value), vehicle.value
+    return grid_setup(problem, vehicle.value, vehicle_options(args)), vehicle.value
 
 
 def _kinoplan_planners(system) -> str:

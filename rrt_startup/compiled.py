@@ -46,6 +46,7 @@ MODULES = (
     "planning_core.angles",
     "planning_core.heap",
     "planning_core.nearest.index",
+    "planning_core.nearest.directed",
     "planning_core.goal",
     "planning_core.projections",
     "rrt_cli.planners.base",

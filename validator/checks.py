@@ -43,8 +43,13 @@ TOO_LONG = "Trajectory too long to check!"
 VALID_VERDICT = "Solution trajectory appears valid."
 INVALID_VERDICT = "Putative solution trajectory has problems."
 
+TURNING_TOO_TIGHT = "Trajectory turns tighter than the turning radius!"
 START_TOLERANCE = 0.001  # in each of x and y (and dx, dy for the spaceship)
 STATE_TOLERANCE = 0.01   # check 7, in each of x, y, dx, dy
+TURNING_TOLERANCE = 1e-6  # check 8: the turn allowed at a point, relative
+TURNING_SLACK = 1e-5      # check 8: and absolute, radians (a path node meets its curve's
+                          # computed end within ~1e-8: a kink of ~3e-7 rad at a 0.05 chord)
+CHORD_SLACK = 1e-9        # check 8: a chord may exceed SAMPLE_STEP by this (rounding)
 
 
 
@@ -58,9 +63,12 @@ class Check:
     """What it asserts, in a few words."""
     kinodynamic_only: bool = False
     """It applies only to systems driven by controls."""
+    directed_only: bool = False
+    """It applies only to systems of one-way curved motions (``-dubins``)."""
 
-    def applies(self, kinodynamic: bool) -> bool:
-        return kinodynamic or not self.kinodynamic_only
+    def applies(self, kinodynamic: bool, directed: bool = False) -> bool:
+        return ((kinodynamic or not self.kinodynamic_only)
+                and (directed or not self.directed_only))
 
 
 CHECKS = (
@@ -71,6 +79,8 @@ CHECKS = (
     Check("goal", "the trajectory ends within 0.1 of the goal"),
     Check("collision", "the trajectory is collision-free"),
     Check("dynamics", "each control leads to the next state", kinodynamic_only=True),
+    Check("turning", "the sampled path turns no tighter than the turning radius",
+          directed_only=True),
 )
 """The checks in the order they run; a check's number is its place here (from 1)."""
 CHECK_NUMBERS = {check.name: number for number, check in enumerate(CHECKS, 1)}
@@ -154,7 +164,9 @@ class ValidationReport:
 
     @property
     def checks_expected(self) -> int:
-        return sum(check.applies(self.system.kinodynamic) for check in CHECKS)
+        system = self.system
+        return sum(check.applies(system.kinodynamic, getattr(system, "directed", False))
+                   for check in CHECKS)
 
     @property
     def valid(self) -> bool:
@@ -488,10 +500,57 @@ class _Validation:
         return results
 
     def motion_checks(self) -> tuple[CheckResult, ...]:
-        """The checks after the goal: collisions (and dynamics, kinodynamic systems)."""
+        """The checks after the goal: collisions (and dynamics, kinodynamic systems;
+        turning, the Dubins car)."""
         if self.system.kinodynamic:
             return self.check_kinodynamic_motion()
-        return (self.check_point_collisions(),)
+        collision_free = self.check_point_collisions()
+        if getattr(self.system, "directed", False):
+            return (collision_free, self.check_turning())
+        return (collision_free,)
+
+    def check_turning(self) -> CheckResult:
+        """The Dubins car's: every chord at most ``SAMPLE_STEP`` long (so that its turns
+        can be seen), and at each point the turn between the chords before and after it
+        (zero-length chords skipped) no sharper than an arc of the turning radius R
+        through both allows, ``asin(l1 / 2R) + asin(l2 / 2R)``, within
+        ``TURNING_TOLERANCE`` relative plus ``TURNING_SLACK`` radians."""
+        plan, radius = self.plan, self.system.radius
+        values, n = plan.trajectory, plan.trajectory_count
+        previous: tuple[float, float, float] | None = None
+        for index in range(n - 1):
+            dx, dy = values[2 * index + 2] - values[2 * index], values[2 * index + 3] - values[2 * index + 1]
+            length = math.hypot(dx, dy)
+            if length > SAMPLE_STEP + CHORD_SLACK:
+                line = self.line_of(index)
+                raise self.fail("turning", TURNING_TOO_TIGHT, f"line {line}: the chord to line "
+                                f"{line + 1} is {_num(length)} long; a Dubins answer is sampled "
+                                f"at most {SAMPLE_STEP} apart, so that its turns can be checked",
+                                line, (values[2 * index], values[2 * index + 1]))
+            if length == 0.0:
+                continue
+            if previous is not None:
+                self._turn_or_fail(previous, (dx, dy, length), radius, index)
+            previous = (dx, dy, length)
+        return self.passed("turning", f"turning radius at least {_num(radius)} "
+                                      f"(tolerance {TURNING_TOLERANCE:g} relative)")
+
+    def _turn_or_fail(self, before: tuple[float, float, float],
+                      after: tuple[float, float, float], radius: float, index: int) -> None:
+        """Fails check 8 when the turn at point ``index`` is too sharp for ``radius``."""
+        (ux, uy, l1), (vx, vy, l2) = before, after
+        turn = math.atan2(abs(ux * vy - uy * vx), ux * vx + uy * vy)
+        allowed = (math.asin(min(1.0, l1 / (2.0 * radius)))
+                   + math.asin(min(1.0, l2 / (2.0 * radius))))
+        if turn <= allowed * (1.0 + TURNING_TOLERANCE) + TURNING_SLACK:
+            return
+        line = self.line_of(index)
+        where = (self.plan.trajectory[2 * index], self.plan.trajectory[2 * index + 1])
+        seen = (l1 + l2) / (2.0 * turn)
+        raise self.fail("turning", TURNING_TOO_TIGHT, f"line {line}: the path turns "
+                        f"{_num(math.degrees(turn))} degrees at {_point(*where)} between chords "
+                        f"of {_num(l1)} and {_num(l2)}: a turning radius of about {_num(seen)}, "
+                        f"below {_num(radius)}", line, where)
 
 
 def world_vertices(problem) -> int:
@@ -780,6 +839,8 @@ def validate_plan(setup: Setup, output_text: str, strict: bool = False,
                               cost_kind="duration" if setup.rows_end_in_count else "length")
     if not report.valid:
         return report
+    if hasattr(setup.system, "row_names"):  # rows sample curves (the Dubins car): their polyline
+        return dataclasses.replace(report, cost=run.path_length)
     return dataclasses.replace(report, cost=answer_cost(setup.si, run.plan, run.final_state))
 
 

@@ -28,7 +28,8 @@ from typing import Sequence
 from cli_common import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags, describe_os_error,
                         is_kinoplan, looks_like_problem_file, parse_any_problem,
                         positive_float, read_problem_text_from_stdin, reject_vehicle_flags,
-                        reserve_standard_fds, say, vehicle_from_flags, write_stdout)
+                        reserve_standard_fds, say, vehicle_from_flags, vehicle_options,
+                        write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.setups import grid_setup, kinoplan_setup
@@ -50,8 +51,8 @@ PROG = "rrt-validator"
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineErrorParser(
         prog=PROG,
-        usage=f"{PROG} [-ugrad | -grad] [-left] [-strict] [-noviz] [-o FILE] [-timeout S] "
-              "[-json] -- PLANNER [ARGS...] < problem.sw",
+        usage=f"{PROG} [-ugrad | -grad | -dubins [-radius R]] [-left] [-strict] [-noviz] "
+              "[-o FILE] [-timeout S] [-json] -- PLANNER [ARGS...] < problem.sw",
         description="Read a problem on stdin (a .sw grid map, or a kinoplan 1 problem), run "
                     "PLANNER ARGS (everything after --) with the problem on its stdin, check "
                     "the trajectory it prints (SPEC 3, checks 1-7; kinoplan: SPEC 5.5), print "
@@ -137,10 +138,12 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
                 kinodynamic: bool | None = None) -> dict:
     """The JSON object; ``vehicle`` is a Vehicle, or a kinoplan system's name with
     ``kinodynamic`` saying whether check 7 applies."""
+    directed = False
     if isinstance(vehicle, Vehicle):
         kinodynamic = vehicle.is_spaceship
+        directed = getattr(vehicle.system, "directed", False)
     by_number = {check.number: check for check in report.checks} if report else {}
-    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic)))
+    checks = [_check_json(n, by_number.get(n), check.applies(bool(kinodynamic), directed))
               for n, check in enumerate(CHECKS, 1)]
     failure = report.first_failure if report else None
     return {
@@ -313,7 +316,8 @@ def _read_problem(parser, args, vehicle: Vehicle):
         reject_vehicle_flags(parser, args)
         # The reader accepts ASCII only: the text goes to the planner as it came.
         return problem, text.encode("ascii"), kinoplan_setup(problem)
-    return (problem, format_problem(problem).encode("ascii"), grid_setup(problem, vehicle))
+    return (problem, format_problem(problem).encode("ascii"),
+            grid_setup(problem, vehicle, vehicle_options(args)))
 
 
 def main(argv: Sequence[str] | None = None) -> int:

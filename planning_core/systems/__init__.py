@@ -13,6 +13,7 @@ SYSTEM_MODULES = {
     "point": "planning_core.systems.point",
     "spaceship": "planning_core.systems.spaceship",
     "left": "planning_core.systems.left_spaceship",
+    "dubins": "planning_core.systems.dubins",
     "pendulum": "planning_core.systems.pendulum",
     "car2": "planning_core.systems.car2",
     "unicycle": "planning_core.systems.unicycle",

@@ -12,6 +12,7 @@ class Vehicle(str, Enum):
     POINT = "point"          # -ugrad (default): <x, y>, straight moves
     SPACESHIP = "spaceship"  # -grad: <x, y, dx, dy>, thrust held for one step
     LEFT_SPACESHIP = "left"  # -grad -left: thrust angle in [0, pi) only
+    DUBINS = "dubins"        # -dubins [-radius R]: <x, y, heading>, forward Dubins paths
 
     @property
     def system(self):
@@ -29,4 +30,5 @@ class Vehicle(str, Enum):
         return _FLAGS[self.value]
 
 
-_FLAGS = {"point": (), "spaceship": ("-grad",), "left": ("-grad", "-left")}
+_FLAGS = {"point": (), "spaceship": ("-grad",), "left": ("-grad", "-left"),
+          "dubins": ("-dubins",)}

@@ -34,13 +34,18 @@ class PlannerEntry:
     """It asks what only the family's space information answers (blossom: ``advance``)."""
     optimizing: bool = False
     """It keeps improving its answer when the problem has an objective (``-optimize``)."""
+    directed: bool = False
+    """It plans for systems whose motions are one-way (the Dubins car: the motion
+    a -> b travelled back is not the motion b -> a); a roadmap that joins its
+    vertices both ways does not."""
 
     def load(self):
         return importlib.import_module(self.module)
 
     def plans_for(self, system) -> bool:
-        """A grid vehicle (the course's point or ships) of a kind it plans for."""
-        return not self.family_only and system_kind(system) in self.kinds
+        """A grid vehicle (the course's point, ships, Dubins car) of a kind it plans for."""
+        return (not self.family_only and system_kind(system) in self.kinds
+                and (self.directed or not getattr(system, "directed", False)))
 
     def plans_for_kinoplan(self, system) -> bool:
         """A ``kinoplan 1`` system (SPEC 5) of a kind it plans for."""
@@ -55,9 +60,11 @@ PLANNERS: dict[str, PlannerEntry] = {
                            "KPIECE1, interior-exterior cell exploration (Sucan & Kavraki 2012)"),
     "rgrrt": PlannerEntry("rrt_cli.planners.rgrrt", KINODYNAMIC,
                           "reachability-guided RRT (Shkolnik, Walter & Tedrake 2009)"),
-    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner"),
+    "rrt": PlannerEntry("rrt_cli.planners.rrt", ANY, "RRT, the course's reference planner",
+                        directed=True),
     "rrtconnect": PlannerEntry("rrt_cli.planners.rrtconnect", GEOMETRIC,
-                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)"),
+                               "bidirectional RRT-Connect (Kuffner & LaValle 2000)",
+                               directed=True),
     "prm": PlannerEntry("rrt_cli.planners.prm", GEOMETRIC,
                         "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
     "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,

@@ -89,15 +89,31 @@ class _Grow(Enum):
 class _Tree(MotionTree):
     """One tree with a nearest index over its states."""
 
-    def __init__(self, root: tuple[float, ...], index, toward_root: bool):
-        super().__init__(root)
+    def __init__(self, root: tuple[float, ...], index, toward_root: bool, reverse=None):
+        self.reverse = reverse
+        """None, or the space's ``reverse_state``: then the tree (grown from the goal)
+        holds reversed states and grows forward in them (a directed system)."""
+        super().__init__(self.flip(root))
         self.index = index
-        self.index.add(root)
+        self.index.add(self.states[0])
         # The goal tree's edges are travelled child -> parent by the final path.
         self.toward_root = toward_root
 
+    def flip(self, state: tuple[float, ...]) -> tuple[float, ...]:
+        """A path's state as this tree holds it, and back (reversing is its own
+        inverse): reversed, or as it is."""
+        return state if self.reverse is None else self.reverse(state)
+
     def path_to_root(self, node: int) -> list[tuple[float, ...]]:
-        return [self.states[k] for k in reversed(self.path_to(node))]
+        return [self.flip(self.states[k]) for k in reversed(self.path_to(node))]
+
+    def travelled_edges(self) -> list[tuple]:
+        """The edges as the path would travel them (a goal tree's: toward the root)."""
+        if not self.toward_root:
+            return self.edges()
+        real = self.flip
+        return [(real(child), control, real(parent))
+                for child, control, parent in self.edges(toward_root=True)]
 
 
 class _Grower:
@@ -117,6 +133,7 @@ class _Grower:
     def grow(self, tree: _Tree, target: tuple[float, ...],
              connecting: bool = False) -> tuple[_Grow, int]:
         """The outcome and the index of the node added (-1 when trapped)."""
+        target = tree.flip(target)
         near = tree.index.nearest(target)
         near_state = tree.states[near]
         clipped = False
@@ -130,7 +147,8 @@ class _Grower:
         if step is None:
             return _Grow.TRAPPED, -1
         new = step[0]
-        if tree.toward_root and self.si.first_hit(new, near_state) is not None:
+        if (tree.toward_root and tree.reverse is None
+                and self.si.first_hit(new, near_state) is not None):
             return _Grow.TRAPPED, -1  # free one way only (a rounding tie, other samples)
         added = tree.add(near, new)
         tree.index.add(new)
@@ -173,10 +191,11 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (),
                           PlanStats(0, 0, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
     start_tree = _Tree(start, si.new_nearest(), toward_root=False)
-    goal_tree = _Tree(goal, si.new_nearest(), toward_root=True)
+    goal_tree = _Tree(goal, si.new_nearest(), toward_root=True,
+                      reverse=getattr(si, "reverse_state", None))
 
     def result(status: PlanStatus, path, iterations: int, message: str = ""):
-        edges = start_tree.edges() + goal_tree.edges(toward_root=True)
+        edges = start_tree.travelled_edges() + goal_tree.travelled_edges()
         stats = PlanStats(iterations, len(start_tree) + len(goal_tree),
                           time.perf_counter() - began)
         return PlanResult(status, si.system, tuple(path), (), tuple(edges), stats, message)
@@ -199,22 +218,24 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         if limit is not None:
             return result(limit, (), iterations)
         iterations += 1
-        path = _extend_and_connect(grower, active, other, start_tree, draw_target())
+        path = _extend_and_connect(grower, active, other, start_tree, draw_target(), si, stop)
         if path is not None:
             return result(PlanStatus.SOLVED, path, iterations)
         active, other = other, active
 
 
 def _extend_and_connect(grower: _Grower, active: _Tree, other: _Tree, start_tree: _Tree,
-                        target) -> list | None:
-    """Extend ``active`` toward ``target``, then connect ``other`` to the new node;
-    the path from start to goal when they meet."""
+                        target, si: GeometricSpaceInformation,
+                        stop: StopCondition) -> list | None:
+    """Extend ``active`` toward ``target``, then connect ``other`` to the new node
+    (until the time is up: a directed system's steps need not get nearer); the path
+    from start to goal when they meet."""
     outcome, added = grower.grow(active, target)
     if outcome is _Grow.TRAPPED:
         return None
-    meeting = active.states[added]
+    meeting = active.flip(active.states[added])
     connect = _Grow.ADVANCED
-    while connect is _Grow.ADVANCED:
+    while connect is _Grow.ADVANCED and not stop.time_is_up():
         connect, reached = grower.grow(other, meeting, connecting=True)
     if connect is not _Grow.REACHED:
         return None
@@ -222,4 +243,12 @@ def _extend_and_connect(grower: _Grower, active: _Tree, other: _Tree, start_tree
     goal_tree = other if active is start_tree else active
     head = [start_tree.states[k] for k in start_tree.path_to(start_node)]
     # Both trees hold the meeting point: print it once.
-    return head + goal_tree.path_to_root(goal_node)[1:]
+    tail = goal_tree.path_to_root(goal_node)[1:]
+    if goal_tree.reverse is not None and not _free_forward(si, [head[-1]] + tail):
+        return None  # a reversed motion is checked again as travelled: rounding ties
+    return head + tail
+
+
+def _free_forward(si: GeometricSpaceInformation, states: list) -> bool:
+    """Every motion between consecutive states is free, as travelled."""
+    return all(si.first_hit(a, b) is None for a, b in zip(states, states[1:]))

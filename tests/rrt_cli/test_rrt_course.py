@@ -45,4 +45,4 @@ def test_course_problem_solved_and_valid(path, vehicle, seed):
     report = validate_output(problem, vehicle, output, strict=True)
     assert report.valid, report.first_failure
     assert not report.warnings
-    assert len(result.tree) == result.stats.tree_nodes - 1
+    assert len(result.edges) == result.stats.tree_nodes - 1

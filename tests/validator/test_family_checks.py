@@ -209,7 +209,7 @@ def test_cli_rejects_a_bad_answer_with_exit_1_and_json(tmp_path):
     assert report["vehicle"] == "car2" and report["verdict"] == "invalid"
     assert report["first_failure"]["message"] == NOT_AT_GOAL
     assert [c["status"] for c in report["checks"]] == ["passed"] * 4 + ["failed", "not run",
-                                                                        "not run"]
+                                                                        "not run", "not applicable"]
 
 
 def test_cli_runs_our_planner_on_the_pendulum():

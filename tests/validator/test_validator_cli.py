@@ -68,7 +68,7 @@ def test_json_object_for_a_valid_answer(tmp_path):
     report = json.loads(done.stdout)  # stdout is only the JSON object
     assert report["verdict"] == "valid" and report["verdict_line"] == VALID_VERDICT
     assert report["exit_status"] == 0 and report["vehicle"] == "point"
-    assert [c["status"] for c in report["checks"]] == ["passed"] * 6 + ["not applicable"]
+    assert [c["status"] for c in report["checks"]] == ["passed"] * 6 + ["not applicable"] * 2
     assert report["first_failure"] is None and report["first_failing_line"] is None
     assert report["counts"] == {"trajectory": 4, "tree": 3, "corner_cuts": 0}
     assert report["path_length"] == pytest.approx(math.hypot(1.4, 0.96) + 2.0
@@ -85,7 +85,7 @@ def test_json_object_for_an_invalid_spaceship_answer(tmp_path):
     assert done.returncode == 1
     report = json.loads(done.stdout)
     assert report["verdict"] == "invalid" and report["verdict_line"] == INVALID_VERDICT
-    assert [c["status"] for c in report["checks"]] == ["passed"] * 6 + ["failed"]
+    assert [c["status"] for c in report["checks"]] == ["passed"] * 6 + ["failed", "not applicable"]
     assert report["first_failure"]["message"].startswith("Trajectory claims that control <0, 0>")
     assert report["first_failing_line"] == 5 and report["checks"][6]["line"] == 5
     assert report["pdf"] == "tree-viz.pdf" and (tmp_path / "tree-viz.pdf").exists()

@@ -1,0 +1,189 @@
+"""Dubins paths (Dubins 1957): the shortest curves of bounded curvature between two
+poses (x, y, heading) for a car that only drives forward, in the closed forms of
+Shkel and Lumelsky (2001), as Walker's and OMPL's libraries state them.
+
+A shortest path is one of six words of at most three segments, each a left turn
+(L), a right turn (R) or a straight line (S): LSL, RSR, LSR, RSL, RLR, LRL.
+Lengths are in map units; a word's three segment lengths are stored in units of
+the radius (an arc's angle in radians, a line's length over the radius).
+
+A pose may also leave its heading free: a 2-tuple ``(x, y)``. A path from such a
+start takes the best of :data:`FREE_HEADINGS` evenly spaced headings and the
+bearing toward the end; a path to such an end, the best of the same headings and
+the bearing from the start. (The exact optimum with a free heading is a CS or CC
+curve (Bui et al. 1994); the candidates keep one formula for both ends.)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterator, Optional, Sequence
+
+TWO_PI = 2.0 * math.pi
+WORDS = ("LSL", "RSR", "LSR", "RSL", "RLR", "LRL")
+TURN = {"L": 1.0, "S": 0.0, "R": -1.0}
+FREE_HEADINGS = 32
+"""Candidate headings of a pose whose heading is free (besides the bearing)."""
+
+
+def mod2pi(angle: float) -> float:
+    """``angle`` in [0, 2 pi)."""
+    wrapped = math.fmod(angle, TWO_PI)
+    if wrapped < 0.0:
+        wrapped += TWO_PI
+    return 0.0 if wrapped >= TWO_PI else wrapped
+
+
+@dataclass(frozen=True)
+class DubinsPath:
+    """One word's path from ``start``: three segments of ``lengths`` (radius units)."""
+
+    start: tuple[float, float, float]
+    word: str
+    lengths: tuple[float, float, float]
+    radius: float
+
+    @property
+    def length(self) -> float:
+        """In map units."""
+        return (self.lengths[0] + self.lengths[1] + self.lengths[2]) * self.radius
+
+    def pose_at(self, s: float) -> tuple[float, float, float]:
+        """The pose after arc length ``s`` (map units, clamped to the path)."""
+        x, y, heading = self.start
+        r = self.radius
+        left = max(0.0, min(s, self.length)) / r
+        for letter, piece in zip(self.word, self.lengths):
+            step = min(piece, left)
+            x, y, heading = advance(x, y, heading, TURN[letter], step, r)
+            left -= step
+            if left <= 0.0:
+                break
+        return (x, y, mod2pi(heading))
+
+    def end(self) -> tuple[float, float, float]:
+        return self.pose_at(self.length)
+
+
+def advance(x: float, y: float, heading: float, turn: float, step: float,
+            r: float) -> tuple[float, float, float]:
+    """Drive ``step`` (radius units) from a pose: ``turn`` +1 left, -1 right, 0 straight."""
+    if turn == 0.0:
+        return (x + step * r * math.cos(heading), y + step * r * math.sin(heading), heading)
+    after = heading + turn * step
+    return (x + turn * r * (math.sin(after) - math.sin(heading)),
+            y - turn * r * (math.cos(after) - math.cos(heading)), after)
+
+
+def _word_lengths(word: str, d: float, a: float, b: float) -> Optional[tuple[float, float, float]]:
+    """The segment lengths of ``word`` in the normalised frame (the end at distance
+    ``d`` along the x axis, headings ``a`` and ``b``), or None where it has none."""
+    sa, sb, ca, cb = math.sin(a), math.sin(b), math.cos(a), math.cos(b)
+    cab = math.cos(a - b)
+    if word == "LSL":
+        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
+        if p2 < 0.0:
+            return None
+        turn = math.atan2(cb - ca, d + sa - sb)
+        return (mod2pi(turn - a), math.sqrt(p2), mod2pi(b - turn))
+    if word == "RSR":
+        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
+        if p2 < 0.0:
+            return None
+        turn = math.atan2(ca - cb, d - sa + sb)
+        return (mod2pi(a - turn), math.sqrt(p2), mod2pi(turn - b))
+    if word == "LSR":
+        p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
+        if p2 < 0.0:
+            return None
+        p = math.sqrt(p2)
+        turn = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+        return (mod2pi(turn - a), p, mod2pi(turn - b))
+    if word == "RSL":
+        p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
+        if p2 < 0.0:
+            return None
+        p = math.sqrt(p2)
+        turn = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+        return (mod2pi(a - turn), p, mod2pi(b - turn))
+    if word == "RLR":
+        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
+        if abs(c) > 1.0:
+            return None
+        p = mod2pi(TWO_PI - math.acos(c))
+        t = mod2pi(a - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
+        return (t, p, mod2pi(a - b - t + p))
+    # LRL
+    c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
+    if abs(c) > 1.0:
+        return None
+    p = mod2pi(TWO_PI - math.acos(c))
+    t = mod2pi(-a + math.atan2(cb - ca, d + sa - sb) + p / 2.0)
+    return (t, p, mod2pi(b - a - t + p))
+
+
+def _frame(a: Sequence[float], b: Sequence[float], radius: float) -> tuple[float, float, float]:
+    """The normalised frame: the distance in radii, and both headings from the bearing."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    d = math.hypot(dx, dy) / radius
+    bearing = mod2pi(math.atan2(dy, dx)) if d > 0.0 else 0.0
+    return d, mod2pi(a[2] - bearing), mod2pi(b[2] - bearing)
+
+
+def word_path(word: str, a: Sequence[float], b: Sequence[float],
+              radius: float) -> Optional[DubinsPath]:
+    """The path of ``word`` from pose ``a`` to pose ``b``, or None where it has none."""
+    lengths = _word_lengths(word, *_frame(a, b, radius))
+    if lengths is None:
+        return None
+    return DubinsPath((a[0], a[1], a[2]), word, lengths, radius)
+
+
+def all_words(a: Sequence[float], b: Sequence[float], radius: float) -> list[DubinsPath]:
+    """Every word's path from pose ``a`` to pose ``b`` (those that exist)."""
+    paths = (word_path(word, a, b, radius) for word in WORDS)
+    return [path for path in paths if path is not None]
+
+
+def shortest_between_poses(a: Sequence[float], b: Sequence[float],
+                           radius: float) -> DubinsPath:
+    """The shortest of the six words (ties: the first in :data:`WORDS`)."""
+    frame = _frame(a, b, radius)
+    best, best_word, best_total = None, "", math.inf
+    for word in WORDS:
+        lengths = _word_lengths(word, *frame)
+        if lengths is not None:
+            total = lengths[0] + lengths[1] + lengths[2]
+            if total < best_total:
+                best, best_word, best_total = lengths, word, total
+    assert best is not None  # LSL or RSR always exists (Dubins 1957)
+    return DubinsPath((a[0], a[1], a[2]), best_word, best, radius)
+
+
+def _candidate_headings(bearing: float) -> Iterator[float]:
+    yield bearing
+    for k in range(FREE_HEADINGS):
+        yield TWO_PI * k / FREE_HEADINGS
+
+
+def shortest(a: Sequence[float], b: Sequence[float], radius: float) -> DubinsPath:
+    """The shortest path from ``a`` to ``b``; a 2-tuple leaves that pose's heading free
+    (the best of the candidate headings, module docstring)."""
+    if len(a) == 3 and len(b) == 3:
+        return shortest_between_poses(a, b, radius)
+    bearing = mod2pi(math.atan2(b[1] - a[1], b[0] - a[0]))
+    best: Optional[DubinsPath] = None
+    for heading in _candidate_headings(bearing):
+        start = (a[0], a[1], a[2] if len(a) == 3 else heading)
+        end = (b[0], b[1], b[2] if len(b) == 3 else heading)
+        path = shortest_between_poses(start, end, radius)
+        if best is None or path.length < best.length:
+            best = path
+    assert best is not None
+    return best
+
+
+def sample_count(length: float, step: float) -> int:
+    """Pieces of at most ``step`` that a path of ``length`` is cut into (at least 1)."""
+    return max(1, math.ceil(length / step))

@@ -1,0 +1,136 @@
+"""The Dubins car on a grid as a :class:`~planning_core.space_information.GeometricSpaceInformation`:
+states are poses (x, y, heading), a motion is the shortest Dubins path
+(:mod:`planning_core.dubins`), so ``distance`` is that path's length and is
+directed (not symmetric, not a metric).
+
+A motion is checked along the very chords the output prints (the curve sampled at
+most ``SAMPLE_STEP`` apart, :meth:`DubinsCar.curve_positions`), each chord walked
+exactly through the grid's cells, each sample strictly inside the map: an answer
+that passes here passes the validator's point checks, ``-strict`` included.
+
+A state given as ``(x, y)`` has its heading free (the start; RRT-Connect's goal
+root). :meth:`reverse_state` turns a pose around, so that a tree grown backward from
+the goal (RRT-Connect) grows forward in reversed poses: the Dubins path a -> b,
+travelled backward, is the path reverse(b) -> reverse(a).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from typing import Any, Callable, Optional, Sequence
+
+from planning_core.dubins import mod2pi, sample_count
+from planning_core.interrupt import Stop
+from planning_core.samplers import uniform
+from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
+
+TWO_PI = 2.0 * math.pi
+
+
+class CurveHit:
+    """Where a curve first meets a blocked cell or the map's edge."""
+
+    def __init__(self, fraction: float) -> None:
+        self.fraction = fraction
+        """Of the curve's length, in (0, 1]."""
+
+
+class DubinsSpaceInformation:
+    """A Dubins car on a grid map: Dubins paths, checked chord by chord."""
+
+    def __init__(self, system: Any, world: GridWorld) -> None:
+        from planning_core.grid_space_information import GridGeometricSpaceInformation
+        self.system = system
+        self.world = world
+        self.grid = grid = GridGeometricSpaceInformation(system, world)
+        """The point's answers where a pose's position is all that counts."""
+        self.is_valid, self.can_end_at = grid.is_valid, grid.can_end_at
+        self.goal_configuration = grid.goal_configuration
+        """The goal point (nudged inside the map), its heading free."""
+        self.certainly_unreachable = grid.certainly_unreachable
+        self.dimension = 3
+        self.rechecks_prefix = True
+        """A curve cut short is another Dubins path, with its own samples."""
+        self.lazy_edges = False
+        self.free_targets = True
+        """Uniform over the free cells, as the point vehicle's."""
+        self.wall_clearance = grid.wall_clearance
+        """A curve cut short stops as far before the wall as the point's segment."""
+        self.printable = world.point_strictly_inside
+
+    @property
+    def space(self) -> Any:
+        """SE(2) over the map (names and bounds)."""
+        return self.grid.space
+
+    def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The length of the shortest Dubins path a -> b (directed)."""
+        length: float = self.system.curve(a, b).length
+        return length
+
+    def interpolate(self, a: Sequence[float], b: Sequence[float],
+                    t: float) -> tuple[float, float, float]:
+        """The pose at fraction ``t`` of the Dubins path a -> b."""
+        curve = self.system.curve(a, b)
+        return curve.pose_at(curve.length * t)
+
+    def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
+        """The first chord of the curve a -> b that enters a blocked cell, or whose
+        end does not print strictly inside the map; None when the curve is free."""
+        curve = self.system.curve(a, b)
+        points = self.system.curve_positions(a, b, curve)
+        walk, inside = self.world.first_blocked_cell_on_segment, self.world.point_strictly_inside
+        x0, y0 = next(points)
+        pieces = sample_count(curve.length, SAMPLE_STEP)
+        for k, (x1, y1) in enumerate(points):
+            hit = walk(x0, y0, x1, y1)
+            if hit is not None:
+                return CurveHit(max((k + hit.fraction) / pieces, 1e-12))
+            if not inside(x1, y1):
+                return CurveHit((k + 1) / pieces)
+            x0, y0 = x1, y1
+        return None
+
+    def _heading(self, rng: random.Random) -> float:
+        return mod2pi(uniform(rng) * TWO_PI)
+
+    def sample_target(self, rng: random.Random) -> tuple[float, float, float]:
+        """A uniform position of the open map, then a uniform heading."""
+        x, y = self.world.sample_open_position(rng)
+        return (x, y, self._heading(rng))
+
+    def free_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        """``draw()``: a uniform free position, then a uniform heading."""
+        from planning_core.worlds.grid_cells import sample_free_point
+        free_cells, width = self.world.free_cell_indices(stop), self.world.width
+
+        def draw() -> tuple[float, float, float]:
+            x, y = sample_free_point(rng, free_cells, width)
+            return (x, y, self._heading(rng))
+
+        return draw
+
+    def roadmap_sampler(self, rng: random.Random, stop: Stop = None) -> Callable[[], Any]:
+        return self.free_sampler(rng, stop)
+
+    def new_nearest(self) -> Any:
+        """Nearest by the Dubins length to the query (:class:`DubinsNearest`)."""
+        from planning_core.nearest.directed import DubinsNearest
+        return DubinsNearest(self.distance, self.world.width, self.world.height)
+
+    def goal_target(self, goal: Any, rng: random.Random) -> tuple[float, float, float]:
+        """The goal point (nudged inside the map), with a uniform heading."""
+        x, y = self.world.printable_point(goal.point)
+        return (x, y, self._heading(rng))
+
+    @staticmethod
+    def reverse_state(state: Sequence[float]) -> tuple[float, ...]:
+        """The pose turned around (a free heading stays free)."""
+        if len(state) == 2:
+            return (state[0], state[1])
+        return (state[0], state[1], mod2pi(state[2] + math.pi))
+
+    def frontier(self) -> Any:
+        """None: a frontier's targets are positions, and a pose needs a heading."""
+        return None

@@ -1,0 +1,189 @@
+"""The Dubins car (``-dubins [-radius R]``): every answer valid under the validator's
+own checks with the turning check, and as a point path; reproducible; the flags'
+usage errors; RRT-Connect's reversed goal tree; the nearest index exact."""
+
+import math
+import random
+
+import pytest
+
+from planning_core.nearest.directed import DubinsNearest
+from planning_core.problem_text import parse_problem
+from planning_core.setups import grid_setup
+from planning_core.systems.dubins import DubinsOptions
+from planning_core.vehicles import Vehicle
+from tests.conftest import COURSE_PROBLEMS, plan_in_process, run_planner
+from validator.checks import validate_output, validate_plan
+
+CASES = [(path, planner, "0.5") for path in COURSE_PROBLEMS
+         for planner in ("rrt", "rrtconnect")] + [
+    # R = 2 is hard on most course maps (docs/dubins.md): where seed 1 solves in seconds
+    (path, planner, "2") for path in COURSE_PROBLEMS
+    for planner in ("rrt", "rrtconnect")
+    if (path.stem, planner) in (("space-0", "rrt"), ("space-1", "rrtconnect"))]
+
+
+def _plan(monkeypatch, text: str, *flags: str):
+    return plan_in_process(monkeypatch, ["-dubins", *flags], text)
+
+
+def _turning(report):
+    return next((c for c in report.checks if c.name == "turning"), None)
+
+
+@pytest.mark.parametrize("path,planner,radius", CASES,
+                         ids=[f"{p.stem}-{n}-r{r}" for p, n, r in CASES])
+def test_answers_are_valid_dubins_and_point_paths(monkeypatch, path, planner, radius):
+    text = path.read_text()
+    status, out, err = _plan(monkeypatch, text, "-planner", planner, "-radius", radius,
+                             "-seed", "1", "-time", "60")
+    assert status == 0, err
+    problem = parse_problem(text)
+    setup = grid_setup(problem, Vehicle.DUBINS, DubinsOptions(float(radius)))
+    report = validate_plan(setup, out, strict=True)
+    assert report.valid, report.first_failure
+    assert _turning(report).passed
+    as_point = validate_output(problem, Vehicle.POINT, out, strict=True)
+    assert as_point.valid, as_point.first_failure
+    assert _turning(as_point) is None
+    rows = [tuple(map(float, line.split())) for line in out.splitlines()]
+    count = int(rows[0][0])
+    chords = [math.dist(a, b) for a, b in zip(rows[1:count], rows[2:count + 1])]
+    assert max(chords) <= 0.05 + 1e-9
+    tree = rows[count + 2:]
+    assert tree and all(math.dist(r[:2], r[2:]) <= 0.05 + 1e-9 for r in tree)
+
+
+def test_a_wider_radius_fails_the_turning_check_and_names_the_line(monkeypatch):
+    text = COURSE_PROBLEMS[0].read_text()
+    status, out, _ = _plan(monkeypatch, text, "-radius", "0.5", "-seed", "2")
+    assert status == 0
+    problem = parse_problem(text)
+    report = validate_plan(grid_setup(problem, Vehicle.DUBINS, DubinsOptions(50.0)), out)
+    failure = report.first_failure
+    assert failure.name == "turning" and failure.number == 8
+    assert failure.message == "Trajectory turns tighter than the turning radius!"
+    assert f"line {failure.line}:" in failure.detail and failure.line > 1
+
+
+def _planted(turn_at: int) -> tuple[str, str]:
+    """A straight path along y = 2, sampled 0.05 apart, with a 30 degree kink at
+    point ``turn_at`` (then straight on): the problem (goal at its end) and the answer."""
+    points, x, y, heading = [], 0.5, 2.0, 0.0
+    for k in range(40):
+        points.append((x, y))
+        if k == turn_at:
+            heading = math.radians(30)
+        x, y = x + 0.05 * math.cos(heading), y + 0.05 * math.sin(heading)
+    lines = [str(len(points))] + [f"{a!r} {b!r}" for a, b in points] + ["0"]
+    end = points[-1]
+    problem = "6 5\n" + "______\n" * 5
+    return problem + f"0.5 2\n{end[0]!r} {end[1]!r}\n", "\n".join(lines) + "\n"
+
+
+def test_a_planted_tight_turn_fails_at_its_line():
+    problem_text, text = _planted(10)
+    problem = parse_problem(problem_text)
+    report = validate_plan(grid_setup(problem, Vehicle.DUBINS, DubinsOptions(0.5)), text)
+    failure = report.first_failure
+    assert failure is not None and failure.name == "turning", report.checks
+    assert failure.line == 2 + 10  # the count's line, then point 0 on line 2
+    # the same path is fine for a car that turns 10 times tighter than the kink needs
+    loose = validate_plan(grid_setup(problem, Vehicle.DUBINS, DubinsOptions(0.05)), text)
+    assert loose.first_failure is None or loose.first_failure.name != "turning"
+
+
+def test_a_duplicated_point_does_not_hide_a_cusp():
+    problem = parse_problem("6 5\n______\n______\n______\n______\n______\n0.5 2\n0.55 2\n")
+    rows = [(0.5, 2.0), (0.55, 2.0), (0.55, 2.0), (0.5, 2.0), (0.55, 2.0)]
+    text = "5\n" + "".join(f"{a!r} {b!r}\n" for a, b in rows) + "0\n"
+    report = validate_plan(grid_setup(problem, Vehicle.DUBINS, DubinsOptions(0.5)), text)
+    # the cusp is at point 3 (line 4), where the chord back starts
+    assert report.first_failure.name == "turning" and report.first_failure.line == 4
+
+
+def test_same_seed_same_bytes(monkeypatch):
+    text = COURSE_PROBLEMS[2].read_text()
+    for planner in ("rrt", "rrtconnect"):
+        runs = [_plan(monkeypatch, text, "-planner", planner, "-seed", str(s))
+                for s in (5, 5, 6)]
+        assert runs[0][0] == 0 and runs[0][1] == runs[1][1] != runs[2][1]
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["-radius", "2"], "needs -dubins"),
+    (["-dubins", "-radius", "0"], "positive"),
+    (["-dubins", "-radius", "-1"], "positive"),
+    (["-dubins", "-radius", "nan"], "not a number"),
+    (["-dubins", "-grad"], "cannot be combined"),
+    (["-dubins", "-planner", "prm"], "does not support"),
+])
+def test_usage_errors_are_one_line_exit_2(argv, words):
+    done = run_planner(argv + ["-seed", "1"], COURSE_PROBLEMS[0].read_text())
+    errors = [line for line in done.stderr.decode().splitlines() if "error" in line]
+    assert done.returncode == 2 and done.stdout == b"" and len(errors) == 1, errors
+    assert words in errors[0]
+
+
+def test_a_radius_too_big_for_the_map_is_one_line_exit_3(monkeypatch):
+    text = COURSE_PROBLEMS[1].read_text()
+    status, out, err = _plan(monkeypatch, text, "-radius", "1e12", "-seed", "1",
+                             "-iterations", "300")
+    assert status == 3 and out == ""
+    assert len(err.strip().splitlines()) == 1 and "no solution" in err
+
+
+def test_rrtconnect_keeps_its_time_limit():
+    """Its connect steps need not get nearer for a directed system: it used to run
+    on past 600 s here."""
+    import time
+    began = time.monotonic()
+    done = run_planner(["-dubins", "-radius", "2", "-planner", "rrtconnect", "-seed", "1",
+                        "-time", "2"], COURSE_PROBLEMS[1].read_text(), timeout=60)
+    assert time.monotonic() - began < 30
+    assert done.returncode in (0, 3)
+
+
+def test_the_nearest_index_is_the_brute_force_nearest():
+    problem = parse_problem(COURSE_PROBLEMS[1].read_text())
+    for radius in (0.5, 2.0):
+        si = grid_setup(problem, Vehicle.DUBINS, DubinsOptions(radius)).si
+        rng = random.Random(radius)
+        index = si.new_nearest()
+        assert isinstance(index, DubinsNearest)
+        states = [si.sample_target(rng) for _ in range(150)]
+        for state in states:
+            index.add(state)
+        for _ in range(60):
+            query = si.sample_target(rng)
+            ranked = sorted(range(len(states)),
+                            key=lambda k: (si.distance(states[k], query), k))
+            assert index.nearest(query) == ranked[0]
+            assert index.k_nearest(query, 5) == ranked[:5]
+
+
+def test_rrtconnect_joins_a_goal_tree_grown_in_reversed_poses():
+    """The goal tree holds poses turned around; its edges come back travelled
+    toward the goal, and the path's every motion is free as travelled."""
+    from rrt_cli.planners import rrtconnect
+    from rrt_cli.planners.base import StopCondition
+    problem = parse_problem(COURSE_PROBLEMS[3].read_text())
+    setup = grid_setup(problem, Vehicle.DUBINS, DubinsOptions(0.5))
+    si = setup.si
+    for seed in range(4):
+        result = rrtconnect.solve(si, setup.pdef, StopCondition(60.0), random.Random(seed))
+        assert result.solved
+        path = result.path
+        assert path[0] == setup.pdef.start and len(path[-1]) == 2  # free heading at both ends
+        assert all(si.first_hit(a, b) is None for a, b in zip(path, path[1:]))
+        # the start tree's edges are free as travelled; the goal tree's, printed
+        # toward the goal, are the reversed curves it checked: the same length (their
+        # samples may differ by rounding)
+        reversed_edges = 0
+        for a, _, b in result.edges:
+            if si.first_hit(a, b) is None:
+                continue
+            back = si.distance(si.reverse_state(b), si.reverse_state(a))
+            assert si.distance(a, b) == pytest.approx(back, rel=1e-9, abs=1e-9)
+            reversed_edges += 1
+        assert reversed_edges <= len(result.edges) // 10
