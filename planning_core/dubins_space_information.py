@@ -64,6 +64,12 @@ class DubinsSpaceInformation:
         """SE(2) over the map (names and bounds)."""
         return self.grid.space
 
+    @staticmethod
+    def goal_center(goal: Any) -> None:
+        """None: the goal's heading is free, so no single pose is its centre (Informed
+        RRT* then draws its targets by rejection from uniform poses)."""
+        return None
+
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The length of the shortest Dubins path a -> b (directed)."""
         length: float = self.system.curve(a, b).length

@@ -71,8 +71,8 @@ PLANNERS: dict[str, PlannerEntry] = {
                             "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
     "rrtstar": PlannerEntry("rrt_cli.planners.rrtstar", GEOMETRIC,
                             "RRT*, k-nearest rewiring (Karaman & Frazzoli 2011)",
-                            optimizing=True),
+                            optimizing=True, directed=True),
     "informed": PlannerEntry("rrt_cli.planners.informed", GEOMETRIC,
                              "Informed RRT*, ellipsoidal informed sampling and pruning "
-                             "(Gammell et al. 2014)", optimizing=True),
+                             "(Gammell et al. 2014)", optimizing=True, directed=True),
 }

@@ -20,7 +20,9 @@ CASES = [(path, planner, "0.5") for path in COURSE_PROBLEMS
     # R = 2 is hard on most course maps (docs/dubins.md): where seed 1 solves in seconds
     (path, planner, "2") for path in COURSE_PROBLEMS
     for planner in ("rrt", "rrtconnect")
-    if (path.stem, planner) in (("space-0", "rrt"), ("space-1", "rrtconnect"))]
+    if (path.stem, planner) in (("space-0", "rrt"), ("space-1", "rrtconnect"))] + [
+    # The optimizing planners' first solutions (their -optimize runs: below)
+    (path, planner, "0.5") for path in COURSE_PROBLEMS[:3] for planner in ("rrtstar", "informed")]
 
 
 def _plan(monkeypatch, text: str, *flags: str):
@@ -187,3 +189,23 @@ def test_rrtconnect_joins_a_goal_tree_grown_in_reversed_poses():
             assert si.distance(a, b) == pytest.approx(back, rel=1e-9, abs=1e-9)
             reversed_edges += 1
         assert reversed_edges <= len(result.edges) // 10
+
+
+@pytest.mark.parametrize("planner", ["rrtstar", "informed"])
+def test_optimizing_planners_answer_valid_dubins_paths_that_cost_no_more(monkeypatch, planner):
+    """With -optimize the answer still turns no tighter than R, and costs at most what
+    the first solution cost (the -stats line's cost against its progress line)."""
+    path = next(p for p in COURSE_PROBLEMS if p.stem == "space-1")
+    text = path.read_text()
+    status, out, err = _plan(monkeypatch, text, "-planner", planner, "-seed", "2",
+                             "-optimize", "-time", "1.5", "-stats")
+    assert status == 0, err
+    setup = grid_setup(parse_problem(text), Vehicle.DUBINS, DubinsOptions(0.5))
+    report = validate_plan(setup, out, strict=True)
+    assert report.valid and _turning(report).passed, report.first_failure
+    progress = next(line for line in err.splitlines() if line.startswith("rrt_cli progress:"))
+    costs = [float(pair.split(":")[1]) for pair in progress.split(": ", 1)[1].split()]
+    stated = float(next(w for w in err.split() if w.startswith("cost=")).split("=")[1])
+    assert costs == sorted(costs, reverse=True) and stated == pytest.approx(costs[-1])
+    # The validator measures the printed chords, the planner the arcs they sample.
+    assert stated * (1 - 1e-3) <= report.cost <= stated
