@@ -179,6 +179,17 @@ class StateSpace:
             total += weight * math.sqrt(squares)
         return total
 
+    def maximum_extent(self) -> float:
+        """The largest distance two states within the bounds can be apart (OMPL's
+        ``getMaximumExtent``): per group, its weight times the norm of its spans, an
+        angle's span pi. Infinite when a weighed variable is unbounded."""
+        total = 0.0
+        for indices, weight, angles in self._plan:
+            spans = [math.pi if is_angle else self.variables[i].high - self.variables[i].low
+                     for i, is_angle in zip(indices, angles)]
+            total += weight * math.sqrt(math.fsum(span * span for span in spans))
+        return total
+
     def interpolate(self, a: State, b: State, t: float) -> State:
         """The state a fraction ``t`` of the way from ``a`` to ``b``.
 

@@ -62,4 +62,7 @@ PLANNERS: dict[str, PlannerEntry] = {
                         "probabilistic roadmap, k nearest, A* query (Kavraki et al. 1996)"),
     "prmstar": PlannerEntry("rrt_cli.planners.prmstar", GEOMETRIC,
                             "PRM*, k = e(1 + 1/d) log n (Karaman & Frazzoli 2011)"),
+    "sst": PlannerEntry("rrt_cli.planners.sst", KINODYNAMIC,
+                        "Stable Sparse RRT, anytime (Li, Littlefield & Bekris 2016)",
+                        optimizing=True),
 }
