@@ -108,10 +108,15 @@ def test_each_witness_keeps_one_active_node_and_the_rest_is_never_found(text, ve
     setup = _setup(text, vehicle)
     pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
     search = sst._Search(setup.si, pdef, random.Random(4), sst.SSTParams())
-    for _ in range(3000):
+    before: list[float] = []
+    for iteration in range(3000):
         goal_node = search.iterate()
         if goal_node is not None:
             search.accept(goal_node)
+        if iteration % 10 == 0:  # a witness's representative only gets cheaper
+            now = [search.costs[rep] for rep in search.reps]
+            assert all(b >= a for a, b in zip(now, before)), "a costlier node replaced one"
+            before = now
     active = [k for k, is_active in enumerate(search.active) if is_active]
     reps = [rep for rep in search.reps if rep >= 0]
     assert len(reps) == len(set(reps)), "a node represents two witnesses"
@@ -174,3 +179,28 @@ def test_a_walled_in_goal_ends_at_the_limit_with_no_path():
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
         sst.SSTParams(**bad)
+
+
+def test_the_best_path_stays_in_the_printed_tree_when_its_nodes_turn_inactive():
+    """Replaced representatives on the best path are kept (pinned), so the printed
+    tree holds the printed path; a later answer unpins them."""
+    setup = _setup(SMALL["pendulum"])
+    pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
+    search = sst._Search(setup.si, pdef, random.Random(1), sst.SSTParams())
+    while search.best is None:
+        goal_node = search.iterate()
+        if goal_node is not None:
+            search.accept(goal_node)
+    path = search.tree.path_to(search.best)
+    for k in reversed(path[1:]):  # as if each were replaced by a cheaper node
+        if search.active[k]:
+            search.deactivate(k)
+    assert all(search.in_tree[k] for k in path)
+    result = search.result(PlanStatus.SOLVED, 0.0, [])
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+    assert report.valid, report.first_failure
+    assert {edge[2] for edge in result.edges} >= set(result.path[1:])
+    childless = [k for k in path[1:] if search.children[k] == 0]
+    assert childless, "the old answer's last node has children: nothing to prune"
+    search.accept(0)  # another answer: the old path's inactive leaves are pruned
+    assert not any(search.in_tree[k] for k in childless)
