@@ -192,13 +192,8 @@ class _Search:
     def result(self, status: PlanStatus, began: float,
                improvements: list[tuple[float, float]]) -> PlanResult:
         """The best path (none without a solution) and the tree's remaining edges."""
-        tree, best = self.tree, self.best
-        path: tuple = ()
-        path_controls: tuple = ()
-        if best is not None:
-            nodes = tree.path_to(best)
-            path = tuple(tree.states[k] for k in nodes)
-            path_controls = tuple(tree.controls[k] for k in nodes[1:])
+        tree = self.tree
+        path, path_controls = tree.path(self.best)
         states, parents, controls = tree.states, tree.parents, tree.controls
         edges = tuple((states[parents[k]], controls[k], states[k])
                       for k in range(1, len(states)) if self.in_tree[k])
