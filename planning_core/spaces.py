@@ -185,6 +185,8 @@ class StateSpace:
         angle's span pi. Infinite when a weighed variable is unbounded."""
         total = 0.0
         for indices, weight, angles in self._plan:
+            if weight == 0.0:
+                continue  # (an unbounded variable there weighs nothing: not 0 * inf)
             spans = [math.pi if is_angle else self.variables[i].high - self.variables[i].low
                      for i, is_angle in zip(indices, angles)]
             total += weight * math.sqrt(math.fsum(span * span for span in spans))

@@ -247,3 +247,6 @@ def test_maximum_extent_is_the_largest_distance_within_the_bounds():
     corners = [(0.0, 0.0, 0.0), (10.0, 10.0, PI)]
     assert space.distance(*corners) == pytest.approx(space.maximum_extent())
     assert StateSpace.from_metric([Variable("v")], [("v", 1.0)]).maximum_extent() == math.inf
+    unweighed = StateSpace.from_metric([Variable("x", 0, 3), Variable("v")],
+                                       [("x", 2.0), ("v", 0.0)])
+    assert unweighed.maximum_extent() == 6.0
