@@ -1,0 +1,110 @@
+"""SST's measurements for docs/optimal-planning.md: first solutions on every problem it
+plans for, and the cost at 1 s against 10 s with an objective.
+
+    python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--json FILE]
+    python -m benchmarks.bench_sst cost [--seeds 20] [--json FILE]
+
+Two worker processes, the compiled build where it is fresh; every answer is checked
+with the validator's own checks. Prints a Markdown table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import random
+import statistics
+from multiprocessing import Pool
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+FAMILY = ["pendulum-t3", "pendulum-t5", "pendulum-t10", "car2-corridors", "unicycle-circles",
+          "car1-scene1", "car1-scene2", "car1-scene3"]
+COURSE = ["simple-0", "space-0", "space-1", "space-2", "space-3"]
+COST_CASES = [("family/pendulum-t5.kp", None), ("family/car1-scene2.kp", None),
+              ("course/space-1.sw", "spaceship")]
+
+
+def run(job: tuple) -> dict:
+    """One SST run: ``(case, seed, time limit, optimize)`` -> what the tables need."""
+    from rrt_startup.compiled import activate
+    activate()
+    from cli_common import parse_any_problem
+    from planning_core.plan_text import format_plan
+    from planning_core.problem_definition import Objective
+    from planning_core.setups import grid_setup, kinoplan_setup
+    from rrt_cli.planners import sst
+    from rrt_cli.planners.base import StopCondition
+    from validator.checks import validate_plan
+    (path, vehicle), seed, limit, optimize = job
+    problem = parse_any_problem((ROOT / "benchmarks" / "problems" / path).read_text())
+    setup = kinoplan_setup(problem) if vehicle is None else grid_setup(problem, vehicle)
+    pdef = dataclasses.replace(setup.pdef, objective=Objective()) if optimize else setup.pdef
+    result = sst.solve(setup.si, pdef, StopCondition(time_limit=limit), random.Random(seed))
+    valid = result.solved and validate_plan(setup, format_plan(result.trajectory,
+                                                               result.tree)).valid
+    return dict(case=f"{path.rsplit('/', 1)[-1]} {vehicle or ''}".strip(), seed=seed,
+                solved=result.solved, valid=valid, first=result.stats.first_solution_seconds,
+                improvements=result.stats.improvements)
+
+
+def first_table(results: list[dict]) -> list[str]:
+    rows = ["| problem | solved | valid | first solution: median s | max s | cost: median |",
+            "|---|---|---|---|---|---|"]
+    for case, runs in _by_case(results).items():
+        solved = [r for r in runs if r["solved"]]
+        firsts = [r["first"] for r in solved] or [float("nan")]
+        costs = [r["improvements"][0][1] for r in solved] or [float("nan")]
+        rows.append(f"| {case} | {len(solved)}/{len(runs)} | {sum(r['valid'] for r in solved)}"
+                    f"/{len(solved)} | {statistics.median(firsts):.2f} | {max(firsts):.2f} | "
+                    f"{statistics.median(costs):.4g} |")
+    return rows
+
+
+def cost_table(results: list[dict]) -> list[str]:
+    rows = ["| problem | solved by 1 s | cost at 1 s: median | solved by 10 s | "
+            "cost at 10 s: median | cheaper at 10 s |", "|---|---|---|---|---|---|"]
+    for case, runs in _by_case(results).items():
+        at_1 = {r["seed"]: [c for s, c in r["improvements"] if s <= 1.0][-1] for r in runs
+                if r["improvements"] and r["improvements"][0][0] <= 1.0}
+        at_10 = {r["seed"]: r["improvements"][-1][1] for r in runs if r["improvements"]}
+        cheaper = sum(at_10[seed] < cost for seed, cost in at_1.items())
+        rows.append(f"| {case} | {len(at_1)}/{len(runs)} | "
+                    f"{statistics.median(at_1.values()):.4g} | {len(at_10)}/{len(runs)} | "
+                    f"{statistics.median(at_10.values()):.4g} | {cheaper}/{len(at_1)} |")
+    return rows
+
+
+def _by_case(results: list[dict]) -> dict[str, list[dict]]:
+    cases: dict[str, list[dict]] = {}
+    for result in results:
+        cases.setdefault(result["case"], []).append(result)
+    return cases
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("what", choices=["first", "cost"])
+    parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--time", type=float, default=30.0, help="first: the time limit")
+    parser.add_argument("--json", help="also write every run here")
+    args = parser.parse_args()
+    if args.what == "first":
+        cases = ([(f"family/{name}.kp", None) for name in FAMILY]
+                 + [(f"course/{name}.sw", ship) for name in COURSE
+                    for ship in ("spaceship", "left")])
+        jobs = [(case, seed, args.time, False) for case in cases for seed in range(args.seeds)]
+    else:
+        jobs = [(case, seed, 10.0, True) for case in COST_CASES for seed in range(args.seeds)]
+    with Pool(2) as pool:
+        results = pool.map(run, jobs, chunksize=1)
+    if args.json:
+        with open(args.json, "w") as out:
+            json.dump(results, out)
+    print("\n".join((first_table if args.what == "first" else cost_table)(results)))
+
+
+if __name__ == "__main__":
+    main()
