@@ -4,7 +4,7 @@ plans for, and the cost at 1 s against 10 s with an objective.
     python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--json FILE]
     python -m benchmarks.bench_sst cost [--seeds 20] [--json FILE]
 
-Two worker processes, the compiled build where it is fresh; every answer is checked
+Two runs at a time, each in its own interpreter with the compiled build where it is fresh; every answer is checked
 with the validator's own checks. Prints a Markdown table.
 """
 
@@ -15,7 +15,9 @@ import dataclasses
 import json
 import random
 import statistics
-from multiprocessing import Pool
+import subprocess
+import sys
+from multiprocessing.pool import ThreadPool
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -27,10 +29,22 @@ COST_CASES = [("family/pendulum-t5.kp", None), ("family/car1-scene2.kp", None),
               ("course/space-1.sw", "spaceship")]
 
 
-def run(job: tuple) -> dict:
-    """One SST run: ``(case, seed, time limit, optimize)`` -> what the tables need."""
-    from rrt_startup.compiled import activate
-    activate()
+# Each run in a fresh interpreter with the compiled build where it is fresh (benchmarks
+# do not import the launchers' start-up: tests/test_import_layers.py).
+CHILD = ("import json, sys; from rrt_startup.compiled import activate; activate(); "
+         "from benchmarks.bench_sst import run; print(json.dumps(run(json.loads(sys.argv[1]))))")
+
+
+def run_in_child(job: list) -> dict:
+    done = subprocess.run([sys.executable, "-c", CHILD, json.dumps(job)], cwd=ROOT,
+                          capture_output=True, text=True, check=True)
+    result: dict = json.loads(done.stdout)
+    return result
+
+
+def run(job: list) -> dict:
+    """One SST run: ``[[path, vehicle], seed, time limit, optimize]`` -> what the
+    tables need."""
     from cli_common import parse_any_problem
     from planning_core.plan_text import format_plan
     from planning_core.problem_definition import Objective
@@ -98,8 +112,8 @@ def main() -> None:
         jobs = [(case, seed, args.time, False) for case in cases for seed in range(args.seeds)]
     else:
         jobs = [(case, seed, 10.0, True) for case in COST_CASES for seed in range(args.seeds)]
-    with Pool(2) as pool:
-        results = pool.map(run, jobs, chunksize=1)
+    with ThreadPool(2) as pool:
+        results = pool.map(run_in_child, jobs, chunksize=1)
     if args.json:
         with open(args.json, "w") as out:
             json.dump(results, out)
