@@ -3,6 +3,7 @@ plans for, and the cost at 1 s against 10 s with an objective.
 
     python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--json FILE]
     python -m benchmarks.bench_sst cost [--seeds 20] [--json FILE]
+    python -m benchmarks.bench_sst remove   (in this interpreter: interpreted)
 
 Two runs at a time, each in its own interpreter with the compiled build where it is fresh; every answer is checked
 with the validator's own checks. Prints a Markdown table.
@@ -17,6 +18,7 @@ import random
 import statistics
 import subprocess
 import sys
+import time
 from multiprocessing.pool import ThreadPool
 from pathlib import Path
 
@@ -64,6 +66,32 @@ def run(job: list) -> dict:
                 improvements=result.stats.improvements)
 
 
+def removal_costs() -> list[str]:
+    """What taking an inactive node out of the nearest index costs beside a query (20 000
+    states, 10 000 queries of ``within`` the selection radius and ``nearest``, 10 000
+    removals), in the family's kd-tree and the grid's quadtree."""
+    from cli_common import parse_any_problem
+    from planning_core.setups import grid_setup, kinoplan_setup
+    rows = ["| index | query (within + nearest), us | remove, us |", "|---|---|---|"]
+    for path, vehicle in [("family/car2-corridors.kp", None), ("course/space-3.sw", "spaceship")]:
+        problem = parse_any_problem((ROOT / "benchmarks" / "problems" / path).read_text())
+        si = (kinoplan_setup(problem) if vehicle is None else grid_setup(problem, vehicle)).si
+        rng, index = random.Random(1), si.new_nearest()
+        for _ in range(20000):
+            index.add(tuple(si.sample_target(rng)) + (0.0, 0.0) * (vehicle is not None))
+        queries = [si.sample_target(rng) for _ in range(10000)]
+        began = time.perf_counter()
+        for query in queries:
+            index.within(query, si.selection_radius)
+            index.nearest(query)
+        queried = time.perf_counter()
+        for k in rng.sample(range(20000), 10000):
+            index.remove(k)
+        removed = time.perf_counter()
+        rows.append(f"| {path} | {(queried - began) * 100:.1f} | {(removed - queried) * 100:.1f} |")
+    return rows
+
+
 def first_table(results: list[dict]) -> list[str]:
     rows = ["| problem | solved | valid | first solution: median s | max s | cost: median |",
             "|---|---|---|---|---|---|"]
@@ -100,11 +128,14 @@ def _by_case(results: list[dict]) -> dict[str, list[dict]]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("what", choices=["first", "cost"])
+    parser.add_argument("what", choices=["first", "cost", "remove"])
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--time", type=float, default=30.0, help="first: the time limit")
     parser.add_argument("--json", help="also write every run here")
     args = parser.parse_args()
+    if args.what == "remove":
+        print("\n".join(removal_costs()))
+        return
     if args.what == "first":
         cases = ([(f"family/{name}.kp", None) for name in FAMILY]
                  + [(f"course/{name}.sw", ship) for name in COURSE
