@@ -1,8 +1,8 @@
 """SST's measurements for docs/optimal-planning.md: first solutions on every problem it
 plans for, and the cost at 1 s against 10 s with an objective.
 
-    python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--json FILE]
-    python -m benchmarks.bench_sst cost [--seeds 20] [--json FILE]
+    python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--only PART] [--json FILE]
+    python -m benchmarks.bench_sst cost [--seeds 20] [--only PART] [--json FILE]
     python -m benchmarks.bench_sst remove   (in this interpreter: interpreted)
 
 Two runs at a time, each in its own interpreter with the compiled build where it is fresh; every answer is checked
@@ -131,6 +131,8 @@ def main() -> None:
     parser.add_argument("what", choices=["first", "cost", "remove"])
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--time", type=float, default=30.0, help="first: the time limit")
+    parser.add_argument("--only", default="", help="first, cost: the problems whose path "
+                        "holds this (course/, family/, space-1)")
     parser.add_argument("--json", help="also write every run here")
     args = parser.parse_args()
     if args.what == "remove":
@@ -143,6 +145,7 @@ def main() -> None:
         jobs = [(case, seed, args.time, False) for case in cases for seed in range(args.seeds)]
     else:
         jobs = [(case, seed, 10.0, True) for case in COST_CASES for seed in range(args.seeds)]
+    jobs = [job for job in jobs if args.only in job[0][0]]
     with ThreadPool(2) as pool:
         results = pool.map(run_in_child, jobs, chunksize=1)
     if args.json:

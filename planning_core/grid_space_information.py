@@ -138,7 +138,7 @@ class GridControlOptions:
     velocity_weight: float = 1.0
     """SST's witnesses: the weight of the velocity (map units per step) beside the
     position's in :meth:`GridControlSpaceInformation.state_distance`."""
-    selection_radius: float = 0.5
+    selection_radius: float = 0.25
     """SST: a node is chosen as the cheapest active one this close to a target, map units."""
     pruning_radius: float = 0.25
     """SST: a witness's region, map units (at most one active node in each)."""

@@ -53,7 +53,7 @@ class SSTParams:
     """Probability that the target is the goal (OMPL's default, 0.05)."""
     selection_radius: Optional[float] = None
     """Best-near selection: the cheapest active node this close to the target; None:
-    the space information's (the ships: 0.5 map units; the family: 1 % of the
+    the space information's (the ships: 0.25 map units; the family: 1 % of the
     metric's largest distance)."""
     pruning_radius: Optional[float] = None
     """A witness's region (at most one active node in it); None: the space
