@@ -81,11 +81,18 @@ class FamilyControlOptions:
     reach_seconds: float = 0.5
     """RG-RRT's reachable set: how long each control is held (K is this over DT,
     rounded, within [KMIN, KMAX])."""
+    selection_share: float = 0.01
+    """SST's selection radius as a share of the metric's largest distance
+    (``StateSpace.maximum_extent``: the systems' spaces differ a hundredfold)."""
+    pruning_share: float = 0.005
+    """SST's pruning radius (a witness's region), as ``selection_share``."""
 
     def __post_init__(self) -> None:
         for name in ("controls_per_extension", "projection_cells", "reach_levels"):
             if getattr(self, name) < 1:
                 raise ValueError(f"{name} must be at least 1")
+        if not (self.selection_share >= 0.0 and self.pruning_share >= 0.0):
+            raise ValueError("selection_share and pruning_share must be >= 0")
         if not self.reach_seconds > 0.0:
             raise ValueError("reach_seconds must be positive")
 
@@ -99,6 +106,9 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         system = self.system
         self.options = options
         self.controls_per_extension = options.controls_per_extension
+        extent = self.space.maximum_extent()
+        self.selection_radius = options.selection_share * extent
+        self.pruning_radius = options.pruning_share * extent
         self.duration = (system.kmin, system.kmax)
         # The metric as the kd-tree measures (compiled: a native call, the same floats).
         self.closeness = self.kernels["metric"].distance
@@ -134,6 +144,14 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The metric (what :meth:`new_nearest` orders by)."""
         return self.closeness(a, b)
+
+    def state_distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The metric, as :meth:`distance`: it weighs the whole state already."""
+        return self.closeness(a, b)
+
+    def new_state_nearest(self) -> Any:
+        """As :meth:`new_nearest`."""
+        return self.new_nearest()
 
     def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
         """The motion's duration: K (the control's last value) slices of dt."""

@@ -139,6 +139,13 @@ class GridControlOptions:
     over the ship's theta range (a half turn closed at both ends: braking included)."""
     reach_thrusts: tuple[float, ...] = (0.5,)
     """RG-RRT's reachable set: thrust magnitudes at every angle (coasting always too)."""
+    velocity_weight: float = 1.0
+    """SST's witnesses: the weight of the velocity (map units per step) beside the
+    position's in :meth:`GridControlSpaceInformation.state_distance`."""
+    selection_radius: float = 0.25
+    """SST: a node is chosen as the cheapest active one this close to a target, map units."""
+    pruning_radius: float = 0.25
+    """SST: a witness's region, map units (at most one active node in each)."""
 
     def __post_init__(self) -> None:
         if self.controls_per_extension < 1 or self.reach_angles < 1:
@@ -149,6 +156,10 @@ class GridControlOptions:
             value = getattr(self, name)
             if value is not None and not value > 0.0:
                 raise ValueError(f"{name} must be positive")
+        if not (self.selection_radius >= 0.0 and self.pruning_radius >= 0.0
+                and self.velocity_weight >= 0.0):
+            raise ValueError("selection_radius, pruning_radius and velocity_weight "
+                             "must be >= 0")
         if not all(thrust > 0.0 for thrust in self.reach_thrusts):
             raise ValueError("reach_thrusts must be positive")
 
@@ -167,6 +178,9 @@ class GridControlSpaceInformation:
         self.world = world
         self.options = options
         self.controls_per_extension = options.controls_per_extension
+        self.selection_radius = options.selection_radius
+        self._state_metric: Any = None  # made on first use (SST's): start-up
+        self.pruning_radius = options.pruning_radius
         self.printable = world.point_strictly_inside
         self.sample_control: Any = system.sample_control
 
@@ -217,6 +231,25 @@ class GridControlSpaceInformation:
     def distance(a: Sequence[float], b: Sequence[float]) -> float:
         """The distance of the positions (what :meth:`new_nearest` orders by)."""
         return math.hypot(a[0] - b[0], a[1] - b[1])
+
+    def state_distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """The positions' distance plus ``velocity_weight`` times the velocities'."""
+        metric = self._state_metric
+        if metric is None:
+            from planning_core.kernels import space_metric
+            metric = self._state_metric = space_metric(self.state_space())
+        distance: float = metric.distance(a, b)
+        return distance
+
+    def state_space(self) -> Any:
+        """:meth:`space` with the velocities weighed (``velocity_weight``)."""
+        return self.system.state_space(self.world.width, self.world.height,
+                                       self.options.velocity_weight)
+
+    def new_state_nearest(self) -> NearestIndex:
+        """An empty kd-tree ordered by :meth:`state_distance`."""
+        from planning_core.nearest.kdtree import KDTree
+        return KDTree(self.state_space())
 
     def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
         """One step's cost: the distance of its positions (a path's cost is the sum over
@@ -310,3 +343,10 @@ class PositionNearest(NearestIndex):
 
     def k_nearest(self, target: tuple[float, ...], k: int) -> list[int]:
         return self.index.k_nearest(target[0], target[1], k)
+
+    def within(self, target: tuple[float, ...], radius: float) -> list[int]:
+        """By the positions' distance (its square against ``radius``'s)."""
+        return self.index.within(target[0], target[1], radius)
+
+    def remove(self, index: int) -> None:
+        self.index.remove(index)

@@ -116,6 +116,12 @@ class ControlSpaceInformation(Protocol):
     """Random controls RRT tries per extension, the valid one ending closest wins
     (OMPL's directed control sampler: the grid's ships 10, the family 1)."""
 
+    selection_radius: float
+    """SST's default selection radius, in :meth:`distance`'s units (the grid's ships:
+    map units; the family: a share of the metric's largest distance)."""
+    pruning_radius: float
+    """SST's default pruning radius (a witness's region), as ``selection_radius``."""
+
     def is_valid(self, state: Sequence[float]) -> bool: ...
 
     def sample_target(self, rng: random.Random) -> State:
@@ -134,6 +140,14 @@ class ControlSpaceInformation(Protocol):
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The distance :meth:`new_nearest` orders by (the grid: of the positions; the
         family: the metric), for radii such as SST's."""
+
+    def state_distance(self, a: Sequence[float], b: Sequence[float]) -> float:
+        """A distance over the whole state (the grid's ships: position and velocity;
+        the family: :meth:`distance`), for SST's witnesses: states close by it fare
+        alike from there on, which the grid's distance of positions does not say."""
+
+    def new_state_nearest(self) -> NearestIndex:
+        """An empty index ordered by :meth:`state_distance`."""
 
     def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
         """The cost of the motion ``a`` -> ``b`` under ``control`` (the grid's ships:

@@ -180,14 +180,16 @@ class StateSpace:
         return total
 
     def maximum_extent(self) -> float:
-        """The largest distance between two states (OMPL's ``getMaximumExtent``): per
-        group, its weight times the diagonal of its variables' box, an angle's side
-        pi (the farthest wrapped difference); inf when a grouped variable is unbounded."""
+        """The largest distance two states within the bounds can be apart (OMPL's
+        ``getMaximumExtent``): per group, its weight times the norm of its spans, an
+        angle's span pi. Infinite when a weighed variable is unbounded."""
         total = 0.0
         for indices, weight, angles in self._plan:
-            sides = [math.pi if is_angle else self.variables[i].high - self.variables[i].low
+            if weight == 0.0:
+                continue  # (an unbounded variable there weighs nothing: not 0 * inf)
+            spans = [math.pi if is_angle else self.variables[i].high - self.variables[i].low
                      for i, is_angle in zip(indices, angles)]
-            total += weight * math.sqrt(math.fsum(side * side for side in sides))
+            total += weight * math.sqrt(math.fsum(span * span for span in spans))
         return total
 
     def interpolate(self, a: State, b: State, t: float) -> State:

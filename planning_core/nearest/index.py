@@ -26,3 +26,13 @@ class NearestIndex:
     def k_nearest(self, query: Any, k: int) -> list[int]:
         """Indices of the ``k`` nearest inserted states, nearest first."""
         raise NotImplementedError
+
+    def within(self, query: Any, radius: float) -> list[int]:
+        """Indices of the states at most ``radius`` from ``query`` (by the distance
+        the structure orders by), sorted by (distance, index)."""
+        raise NotImplementedError
+
+    def remove(self, index: int) -> None:
+        """No query finds the state inserted as ``index`` any more (indices of the
+        others are kept; removing all of them leaves ``nearest`` answering -1)."""
+        raise NotImplementedError

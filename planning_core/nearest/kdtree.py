@@ -106,6 +106,20 @@ class KDTree(NearestIndex):
             self._split(node)
         return index
 
+    def remove(self, index: int) -> None:
+        """No query finds point ``index`` any more: it leaves its leaf's bucket, found
+        by the path :meth:`add` took (boxes stay as they were: still bounds)."""
+        key, node = self._keys[index], self._root
+        while node is not None:
+            bucket = node.bucket
+            if bucket is not None:
+                if index in bucket:
+                    bucket.remove(index)
+                    return
+                break
+            node = node.left if key[node.axis] < node.split else node.right
+        raise ValueError(f"point {index} is not in the structure")
+
     def _leaf(self, indices: list[int]) -> _Node:
         """A leaf over ``indices`` with their tight box."""
         keys, axes = self._keys, self._axes

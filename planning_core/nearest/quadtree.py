@@ -96,10 +96,10 @@ class QuadtreeNearest:
             if len(child.indices) > self.leaf_capacity and child.x1 - child.x0 > _MIN_NODE_SIZE:
                 self._split(child)
 
-    def _search(self, x: float, y: float, keep: _Scan) -> None:
-        """Walk the leaves that may hold a point closer than the bound, nearest
-        quadrant first, ``keep.scan`` reading each leaf that has points."""
-        bound = math.inf
+    def _search(self, x: float, y: float, keep: _Scan, bound: float = math.inf) -> None:
+        """Walk the leaves that may hold a point closer than the bound (at first
+        ``bound``, a squared distance), nearest quadrant first, ``keep.scan``
+        reading each leaf that has points."""
         stack = [self.root]
         top = 1
         while top:
@@ -143,6 +143,48 @@ class QuadtreeNearest:
         self._search(x, y, kept)
         kept.heap.sort(reverse=True)
         return [-negated_index for _, negated_index in kept.heap]
+
+    def within(self, x: float, y: float, radius: float) -> list[int]:
+        """Indices of the points whose squared distance to (x, y) is at most
+        ``radius * radius``, sorted by (squared distance, index)."""
+        if not radius >= 0.0:
+            raise ValueError(f"radius must be a number >= 0, got {radius!r}")
+        limit = radius * radius
+        found = _Within(self.xs, self.ys, x, y, limit)
+        self._search(x, y, found, limit)
+        found.pairs.sort()
+        return [index for _, index in found.pairs]
+
+    def remove(self, index: int) -> None:
+        """No query finds point ``index`` any more: it leaves its leaf (found by
+        the quadrants :meth:`add` took; leaves never merge back)."""
+        x, y, node = self.xs[index], self.ys[index], self.root
+        children = node.children
+        while children is not None:
+            node = children[node.quadrant(x, y)]
+            children = node.children
+        if index not in node.indices:
+            raise ValueError(f"point {index} is not in the structure")
+        node.indices.remove(index)
+
+
+class _Within(_Scan):
+    """Every point within a fixed squared distance: ``(d2, index)`` pairs."""
+
+    def __init__(self, xs: list[float], ys: list[float], x: float, y: float,
+                 limit: float) -> None:
+        self.xs, self.ys, self.x, self.y, self.limit = xs, ys, x, y, limit
+        self.pairs: list[tuple[float, int]] = []
+
+    def scan(self, indices: list[int]) -> float:
+        xs, ys, x, y, limit, pairs = self.xs, self.ys, self.x, self.y, self.limit, self.pairs
+        for index in indices:
+            ddx = xs[index] - x
+            ddy = ys[index] - y
+            d2 = ddx * ddx + ddy * ddy
+            if d2 <= limit:
+                pairs.append((d2, index))
+        return limit
 
 
 class _Nearest(_Scan):

@@ -58,13 +58,17 @@ class Spaceship(SpaceshipVariables):
     def full_turn(self) -> bool:
         return self.theta_range >= FULL_TURN
 
-    def state_space(self, width: float, height: float):
+    def state_space(self, width: float, height: float, velocity_weight: float = 0.0):
         """Positions within the map, velocities unbounded; distance by position
-        (the grid planners' nearest node is the nearest by position)."""
+        (the grid planners' nearest node is the nearest by position), plus
+        ``velocity_weight`` times the velocities' distance."""
         from planning_core.spaces import StateSpace, Variable
+        metric = {"x,y": 1.0}
+        if velocity_weight > 0.0:
+            metric["dx,dy"] = velocity_weight
         return StateSpace.from_metric(
             (Variable("x", 0.0, width), Variable("y", 0.0, height), Variable("dx"),
-             Variable("dy")), {"x,y": 1.0})
+             Variable("dy")), metric)
 
     def start_state(self, x: float, y: float) -> State:
         """SPEC 2: the ship starts at rest."""

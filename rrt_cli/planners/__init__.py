@@ -75,4 +75,7 @@ PLANNERS: dict[str, PlannerEntry] = {
     "informed": PlannerEntry("rrt_cli.planners.informed", GEOMETRIC,
                              "Informed RRT*, ellipsoidal informed sampling and pruning "
                              "(Gammell et al. 2014)", optimizing=True, directed=True),
+    "sst": PlannerEntry("rrt_cli.planners.sst", KINODYNAMIC,
+                        "Stable Sparse RRT, anytime (Li, Littlefield & Bekris 2016)",
+                        optimizing=True),
 }

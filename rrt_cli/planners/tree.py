@@ -36,6 +36,15 @@ class MotionTree:
         path.reverse()
         return path
 
+    def path(self, node: int | None) -> tuple[tuple, tuple]:
+        """The states from the root to ``node`` and the controls that lead along them
+        (both empty when ``node`` is None)."""
+        if node is None:
+            return (), ()
+        nodes = self.path_to(node)
+        return (tuple(self.states[k] for k in nodes),
+                tuple(self.controls[k] for k in nodes[1:]))
+
     def edges(self, toward_root: bool = False) -> list[tuple]:
         """``(parent state, control, child state)`` per non-root node; with
         ``toward_root``, ``(child, control, parent)`` (a tree grown from the goal)."""
@@ -47,12 +56,7 @@ class MotionTree:
     def result(self, system, status: PlanStatus, goal_node: int | None, iterations: int,
                began: float, message: str = "") -> PlanResult:
         """The result: the path to ``goal_node`` (none when it is None) and every edge."""
-        path: tuple = ()
-        path_controls: tuple = ()
-        if goal_node is not None:
-            nodes = self.path_to(goal_node)
-            path = tuple(self.states[k] for k in nodes)
-            path_controls = tuple(self.controls[k] for k in nodes[1:])
+        path, path_controls = self.path(goal_node)
         stats = PlanStats(iterations, len(self.states), time.perf_counter() - began)
         return PlanResult(status, system, path, path_controls, tuple(self.edges()), stats,
                           message)

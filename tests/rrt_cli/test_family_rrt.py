@@ -119,7 +119,7 @@ def test_nearest_is_by_the_metric_with_angles_wrapping():
 def test_the_kinodynamic_planners_are_registered_for_kinoplan_problems():
     pendulum = parse_kinoplan((FAMILY / "pendulum-t3.kp").read_text()).system
     assert {name for name, entry in PLANNERS.items()
-            if entry.plans_for_kinoplan(pendulum)} == {"blossom", "kpiece", "rgrrt", "rrt"}
+            if entry.plans_for_kinoplan(pendulum)} == {"blossom", "kpiece", "rgrrt", "rrt", "sst"}
 
 
 # ----- the command line -------------------------------------------------------------

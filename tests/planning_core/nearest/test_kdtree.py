@@ -214,3 +214,39 @@ def test_all_duplicates_do_not_split_forever():
         tree.add((1.0, 2.0, PI, -PI, 0.5))
     assert tree.nearest((0.0, 0.0, 0.0, 0.0, 0.0)) == 0
     assert tree.within((1.0, 2.0, -PI, PI, 0.5), 0.0) == list(range(200))
+
+
+@pytest.mark.parametrize("name", sorted(SPACES))
+def test_removed_points_are_found_by_no_query(name):
+    """After ``remove``, every query answers as the definition over the points left."""
+    space, rng = SPACES[name](), random.Random(len(name))
+    tree, points, removed = KDTree(space, 4), [], set()
+    for n in range(500):
+        points.append(make_state(space, rng, points))
+        tree.add(points[-1])
+        if n % 2 and rng.random() < 0.8:
+            gone = rng.randrange(n + 1)
+            if gone not in removed:
+                tree.remove(gone)
+                removed.add(gone)
+        if n % 10 == 0:
+            q = make_state(space, rng, points)
+            left = sorted(pair for pair in ranked(space, points, q) if pair[1] not in removed)
+            if left:
+                assert tree.nearest(q) == left[0][1]
+            assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
+            radius = left[min(len(left) - 1, rng.randrange(15))][0] if left else 1.0
+            assert tree.within(q, radius) == [i for d, i in left if d <= radius]
+    with pytest.raises(ValueError):
+        tree.remove(next(iter(removed)))
+
+
+def test_maximum_extent_is_the_largest_distance_within_the_bounds():
+    space = se2()  # 0.7 * hypot(10, 10) + 0.3 * pi
+    assert space.maximum_extent() == pytest.approx(0.7 * math.hypot(10, 10) + 0.3 * PI)
+    corners = [(0.0, 0.0, 0.0), (10.0, 10.0, PI)]
+    assert space.distance(*corners) == pytest.approx(space.maximum_extent())
+    assert StateSpace.from_metric([Variable("v")], [("v", 1.0)]).maximum_extent() == math.inf
+    unweighed = StateSpace.from_metric([Variable("x", 0, 3), Variable("v")],
+                                       [("x", 2.0), ("v", 0.0)])
+    assert unweighed.maximum_extent() == 6.0

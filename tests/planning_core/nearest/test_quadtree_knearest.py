@@ -1,6 +1,7 @@
 """QuadtreeNearest.k_nearest equals a brute-force scan: every point sorted by
 (squared distance, insertion index), the first k kept."""
 
+import math
 import random
 
 import pytest
@@ -48,3 +49,33 @@ def test_small_or_empty_structures():
     assert tree.k_nearest(0.0, 0.0, 10) == [1, 0]
     assert tree.k_nearest(0.0, 0.0, 0) == []
     assert tree.nearest(0.0, 0.0) == 1  # nearest() is unchanged by the new method
+
+
+def test_within_and_remove_match_brute_force():
+    """``within`` keeps (squared distance, index) order and its boundary; a removed
+    point is found by no query (SST takes replaced nodes out this way)."""
+    rng = random.Random(5)
+    tree = QuadtreeNearest(20, 20)
+    removed = set()
+    for i in range(1200):
+        tree.add(rng.random() * 20 * (0.1 if i % 3 else 1.0), rng.random() * 20)
+        if i % 3 == 1:
+            gone = rng.randrange(i + 1)
+            if gone not in removed:
+                tree.remove(gone)
+                removed.add(gone)
+        if i % 20 == 0:
+            qx, qy = rng.random() * 20, rng.random() * 20
+            alive = [k for k in brute_force(tree.xs, tree.ys, qx, qy, len(tree.xs))
+                     if k not in removed]
+            if alive:
+                assert tree.nearest(qx, qy) == alive[0]
+            assert tree.k_nearest(qx, qy, 7) == alive[:7]
+            d2 = [(tree.xs[k] - qx) ** 2 + (tree.ys[k] - qy) ** 2 for k in alive]
+            radius = math.sqrt(d2[min(len(d2) - 1, rng.randrange(30))]) if d2 else 1.0
+            assert tree.within(qx, qy, radius) == [k for k, d in zip(alive, d2)
+                                                   if d <= radius * radius]
+    with pytest.raises(ValueError):
+        tree.remove(next(iter(removed)))
+    with pytest.raises(ValueError):
+        tree.within(1.0, 1.0, -1.0)

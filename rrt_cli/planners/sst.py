@@ -1,0 +1,231 @@
+"""SST, Stable Sparse RRT (Y. Li, Z. Littlefield and K. E. Bekris, "Asymptotically
+optimal sampling-based kinodynamic planning", IJRR 35(5), 2016), for kinodynamic
+systems: asymptotically near-optimal without a steering function.
+
+Each iteration draws a target (the goal with probability ``goal_bias``, else
+``si.sample_target``) and selects the *best near* node: of the active nodes within
+``selection_radius`` of the target, the cheapest (the path's cost from the start,
+``si.motion_cost`` summed); none there, the nearest active node. From it, a random
+control held for a random duration (``si.random_motion``: Monte Carlo propagation,
+no steering). A new state joins the tree only if it is the cheapest so far in its
+*witness*'s region: the witnesses are states at least ``pruning_radius`` apart, the
+nearest one within ``pruning_radius`` (else the new state becomes one), each with
+at most one active node, its representative. The representative it replaces turns
+inactive: no longer selected nor found by nearest queries (it leaves the index);
+an inactive node without children is pruned from the tree, and its parent too
+once that is inactive and childless, and so on up.
+
+Departures from OMPL's ``control::SST`` (read for the algorithm, not copied):
+a random motion cut short by an invalid slice is kept, up to its last valid slice
+(OMPL drops it); on the grid's ships, whose output holds one control per step, a
+motion of ``k`` steps is ``k`` chained nodes, each judged against its witness in
+turn (the chain ends at the first that is not the cheapest there); the nodes of
+the best solution are never pruned (they may turn inactive), so the printed tree
+(the nodes still in the tree at the end) holds the printed path, where OMPL keeps
+a copy of the path instead. Neither changes which nodes can be selected.
+
+Without an objective the search ends at the first node in the goal region; with
+``pdef.objective`` it keeps going, each cheaper goal node the new answer, until
+the objective is satisfied or ``stop`` says so. docs/optimal-planning.md has the
+defaults' reasons and the measurements.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from dataclasses import dataclass
+from typing import Any, Optional
+
+from planning_core.nearest.index import NearestIndex
+from planning_core.problem_definition import ProblemDefinition
+from planning_core.samplers import uniform
+from planning_core.space_information import ControlSpaceInformation
+from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
+from rrt_cli.planners.tree import MotionTree, start_in_goal
+
+
+@dataclass(frozen=True)
+class SSTParams:
+    """SST's settings (``-planner sst``); the radii in ``si.distance``'s units."""
+
+    goal_bias: float = 0.05
+    """Probability that the target is the goal (OMPL's default, 0.05)."""
+    selection_radius: Optional[float] = None
+    """Best-near selection: the cheapest active node this close to the target; None:
+    the space information's (the ships: 0.25 map units; the family: 1 % of the
+    metric's largest distance)."""
+    pruning_radius: Optional[float] = None
+    """A witness's region (at most one active node in it); None: the space
+    information's (the ships: 0.25 map units; the family: 0.5 %)."""
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.goal_bias <= 1.0:
+            raise ValueError("goal_bias must be in [0, 1]")
+        for name in ("selection_radius", "pruning_radius"):
+            value = getattr(self, name)
+            if value is not None and not value >= 0.0:
+                raise ValueError(f"{name} must be >= 0")
+
+
+Params = SSTParams
+
+
+class _Search:
+    """One SST run: the tree with each node's cost, the active nodes' index, the
+    witnesses and their representatives, the best goal node."""
+
+    def __init__(self, si: ControlSpaceInformation, pdef: ProblemDefinition,
+                 rng: random.Random, params: SSTParams):
+        self.si, self.rng, self.goal, self.goal_bias = si, rng, pdef.goal, params.goal_bias
+        self.selection_radius = (si.selection_radius if params.selection_radius is None
+                                 else params.selection_radius)
+        self.pruning_radius = (si.pruning_radius if params.pruning_radius is None
+                               else params.pruning_radius)
+        start = pdef.start
+        self.tree = MotionTree(start)
+        self.costs = [0.0]
+        self.children = [0]
+        self.active = [True]
+        """Selectable and in :attr:`nodes` (a witness's representative)."""
+        self.in_tree = [True]
+        """Not pruned."""
+        self.pinned = [False]
+        """On the best solution's path: never pruned."""
+        self.nodes: NearestIndex = si.new_nearest()
+        self.nodes.add(start)
+        self.witnesses: NearestIndex = si.new_state_nearest()
+        self.witnesses.add(start)
+        self.witness_states = [start]
+        self.reps = [0]
+        """Each witness's representative (-1: none yet)."""
+        self.best: Optional[int] = None
+        self.iterations = 0
+
+    def select(self, target: Any) -> int:
+        """The cheapest active node within the selection radius (ties: the nearer),
+        else the nearest active node."""
+        near = self.nodes.within(target, self.selection_radius)
+        if not near:
+            return self.nodes.nearest(target)
+        return min(near, key=self.costs.__getitem__)
+
+    def witness(self, state: Any) -> int:
+        """The nearest witness if within the pruning radius, else ``state`` as a new
+        one, without a representative."""
+        closest = self.witnesses.nearest(state)
+        if self.si.state_distance(self.witness_states[closest], state) <= self.pruning_radius:
+            return closest
+        self.witness_states.append(state)
+        self.reps.append(-1)
+        return self.witnesses.add(state)
+
+    def iterate(self) -> Optional[int]:
+        """One iteration; a goal node cheaper than the best so far, or None."""
+        si, rng = self.si, self.rng
+        self.iterations += 1
+        if uniform(rng) < self.goal_bias:
+            target = si.goal_target(self.goal, rng)
+        else:
+            target = si.sample_target(rng)
+        node = self.select(target)
+        motion = si.random_motion(self.tree.states[node], rng)
+        if motion is None:
+            return None
+        control, steps = motion
+        for state in steps:
+            cost = self.costs[node] + si.motion_cost(self.tree.states[node], control, state)
+            witness = self.witness(state)
+            old = self.reps[witness]
+            if old >= 0 and not cost < self.costs[old]:
+                return None
+            node = self.add(node, state, control, cost)
+            self.reps[witness] = node
+            if old >= 0:
+                self.deactivate(old)
+            if self.goal.reached(state):
+                best = self.best
+                return node if best is None or cost < self.costs[best] else None
+        return None
+
+    def add(self, parent: int, state: Any, control: Any, cost: float) -> int:
+        node = self.tree.add(parent, state, control)
+        self.children[parent] += 1
+        self.costs.append(cost)
+        self.children.append(0)
+        self.active.append(True)
+        self.in_tree.append(True)
+        self.pinned.append(False)
+        self.nodes.add(state)
+        return node
+
+    def deactivate(self, node: int) -> None:
+        """A representative replaced: out of the index, and pruned if childless."""
+        self.active[node] = False
+        self.nodes.remove(node)
+        self.prune(node)
+
+    def prune(self, node: int) -> None:
+        """Remove ``node`` and then its ancestors while each is inactive, childless
+        and not on the best path (the start is always active: nothing costs less)."""
+        active, children, pinned, parents = (self.active, self.children, self.pinned,
+                                             self.tree.parents)
+        while not active[node] and children[node] == 0 and not pinned[node]:
+            self.in_tree[node] = False
+            node = parents[node]
+            children[node] -= 1
+
+    def accept(self, goal_node: int) -> None:
+        """``goal_node`` is the new answer: its path is pinned, the old one's not."""
+        old = self.best
+        self.best = goal_node
+        if old is not None:
+            self.pin(old, False)
+        self.pin(goal_node, True)
+        if old is not None:
+            self.prune(old)
+
+    def pin(self, node: int, pinned: bool) -> None:
+        for k in self.tree.path_to(node):
+            self.pinned[k] = pinned
+
+    def result(self, status: PlanStatus, began: float,
+               improvements: list[tuple[float, float]]) -> PlanResult:
+        """The best path (none without a solution) and the tree's remaining edges."""
+        tree = self.tree
+        path, path_controls = tree.path(self.best)
+        states, parents, controls = tree.states, tree.parents, tree.controls
+        edges = tuple((states[parents[k]], controls[k], states[k])
+                      for k in range(1, len(states)) if self.in_tree[k])
+        stats = PlanStats(self.iterations, len(edges) + 1, time.perf_counter() - began,
+                          improvements[0][0] if improvements else None, tuple(improvements))
+        return PlanResult(status, self.si.system, path, path_controls, edges, stats)
+
+
+@guarded
+def solve(si: ControlSpaceInformation, pdef: ProblemDefinition, stop: StopCondition,
+          rng: random.Random, params: SSTParams = SSTParams()) -> PlanResult:
+    if not si.system.kinodynamic:
+        raise ValueError("SST plans for kinodynamic systems only")
+    began = time.perf_counter()
+    search = _Search(si, pdef, rng, params)
+    solved = start_in_goal(si, pdef, search.tree, began)
+    if solved is not None:
+        return solved
+    objective = pdef.objective
+    improvements: list[tuple[float, float]] = []
+    while True:
+        limit = stop.status(search.iterations)
+        if limit is not None:
+            break
+        goal_node = search.iterate()
+        if goal_node is None:
+            continue
+        search.accept(goal_node)
+        cost = search.costs[goal_node]
+        improvements.append((time.perf_counter() - began, cost))
+        if objective is None or objective.satisfied(cost):
+            limit = PlanStatus.SOLVED
+            break
+    status = limit if search.best is None else PlanStatus.SOLVED
+    return search.result(status, began, improvements)

@@ -1,0 +1,206 @@
+"""SST (rrt_cli/planners/sst.py): every answer passes the validator's own checks, on
+the family's kinodynamic systems and both grid ships; with an objective the cost only
+falls; the witnesses keep at most one active node each, and what is inactive or pruned
+is found by no query; a seed fixes the output."""
+
+from __future__ import annotations
+
+import math
+import random
+
+import pytest
+
+from cli_common import parse_any_problem
+from planning_core.costs import path_cost
+from planning_core.plan_text import format_plan
+from planning_core.problem_definition import Objective
+from planning_core.problem_text import parse_problem
+from planning_core.setups import grid_setup, kinoplan_setup
+from planning_core.vehicles import Vehicle
+from rrt_cli.planners import PLANNERS, sst
+from rrt_cli.planners.base import PlanStatus, StopCondition
+from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner
+from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, SHIPS, ZIGZAG
+from tests.rrt_cli.test_family_kinodynamic_planners import KINODYNAMIC_PROBLEMS, SMALL
+from validator.checks import validate_plan
+
+FAMILY = ROOT / "benchmarks" / "problems" / "family"
+
+
+def _setup(text: str, vehicle: Vehicle | None = None):
+    if vehicle is None:
+        return kinoplan_setup(parse_any_problem(text))
+    return grid_setup(parse_problem(text), vehicle)
+
+
+def solve_and_validate(text: str, vehicle: Vehicle | None, seed: int,
+                       stop: StopCondition | None = None, objective: Objective | None = None):
+    """SST's answer, which must be solved and valid by the validator's own checks."""
+    setup = _setup(text, vehicle)
+    pdef = setup.pdef if objective is None else setup.pdef.__class__(
+        setup.pdef.start, setup.pdef.goal, objective)
+    result = sst.solve(setup.si, pdef, stop or StopCondition(time_limit=60), random.Random(seed))
+    assert result.solved, (result.status, result.stats)
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+    assert report.valid, report.first_failure
+    assert len(result.tree) == result.stats.tree_nodes - 1
+    return setup, result, report
+
+
+SMALL_CASES = ([(name, None) for name in sorted(SMALL)]
+               + [(name, ship) for name in ("gap-wall", "zigzag") for ship in SHIPS])
+MAPS = {"gap-wall": GAP_WALL, "zigzag": ZIGZAG}
+
+
+@pytest.mark.parametrize("name, vehicle", SMALL_CASES,
+                         ids=[f"{n}-{v.value if v else 'family'}" for n, v in SMALL_CASES])
+def test_small_problems_solved_and_valid(name, vehicle):
+    text = SMALL[name] if vehicle is None else MAPS[name]
+    _, result, _ = solve_and_validate(text, vehicle, 1)
+    assert result.stats.first_solution_seconds == result.stats.improvements[0][0]
+
+
+BENCHMARK_CASES = ([(FAMILY / f"{name}.kp", None) for name in KINODYNAMIC_PROBLEMS]
+                   + [(path, ship) for path in COURSE_PROBLEMS for ship in SHIPS])
+
+
+@pytest.mark.slow  # seconds each (the left ship on space-3: tens)
+@pytest.mark.parametrize("path, vehicle", BENCHMARK_CASES,
+                         ids=[f"{p.stem}-{v.value if v else 'family'}" for p, v in BENCHMARK_CASES])
+def test_benchmark_problems_seed_1_solved_and_valid(path, vehicle):
+    solve_and_validate(path.read_text(), vehicle, 1, StopCondition(time_limit=120))
+
+
+@pytest.mark.parametrize("text, vehicle", [(SMALL["pendulum"], None),
+                                           (GAP_WALL, Vehicle.SPACESHIP)],
+                         ids=["pendulum", "spaceship"])
+def test_with_an_objective_the_cost_only_falls(text, vehicle):
+    """The same seed run longer: its answer costs at most the first solution, every
+    improvement is cheaper and later than the one before, and the answer is valid."""
+    first = solve_and_validate(text, vehicle, 2)[1]
+    setup, longer, report = solve_and_validate(text, vehicle, 2, StopCondition(
+        max_iterations=first.stats.iterations + 6000), Objective())
+    steps = longer.stats.improvements
+    assert steps[0][1] == pytest.approx(path_cost(setup.si, first.path, first.path_controls),
+                                        rel=1e-12)
+    assert len(steps) > 1, "no improvement in 6000 iterations"
+    assert all(a[0] < b[0] and a[1] > b[1] for a, b in zip(steps, steps[1:]))
+    assert report.cost == pytest.approx(steps[-1][1], rel=1e-9) and report.cost < steps[0][1]
+    assert longer.stats.iterations == first.stats.iterations + 6000
+
+
+def test_the_objective_threshold_stops_the_search():
+    setup = _setup(SMALL["pendulum"])
+    free = sst.solve(setup.si, setup.pdef.__class__(setup.pdef.start, setup.pdef.goal,
+                                                    Objective()),
+                     StopCondition(max_iterations=8000), random.Random(2))
+    costs = [cost for _, cost in free.stats.improvements]
+    threshold = costs[1]  # the second solution is good enough
+    _, met, _ = solve_and_validate(SMALL["pendulum"], None, 2, objective=Objective(threshold))
+    assert [cost for _, cost in met.stats.improvements] == costs[:2]
+    assert met.stats.iterations < free.stats.iterations
+
+
+@pytest.mark.parametrize("text, vehicle", [(SMALL["car2"], None), (ZIGZAG, Vehicle.SPACESHIP),
+                                           (GAP_WALL, Vehicle.LEFT_SPACESHIP)],
+                         ids=["car2", "spaceship", "left"])
+def test_each_witness_keeps_one_active_node_and_the_rest_is_never_found(text, vehicle):
+    setup = _setup(text, vehicle)
+    pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
+    search = sst._Search(setup.si, pdef, random.Random(4), sst.SSTParams())
+    before: list[float] = []
+    for iteration in range(3000):
+        goal_node = search.iterate()
+        if goal_node is not None:
+            search.accept(goal_node)
+        if iteration % 10 == 0:  # a witness's representative only gets cheaper
+            now = [search.costs[rep] for rep in search.reps]
+            assert all(b >= a for a, b in zip(now, before)), "a costlier node replaced one"
+            before = now
+    active = [k for k, is_active in enumerate(search.active) if is_active]
+    reps = [rep for rep in search.reps if rep >= 0]
+    assert len(reps) == len(set(reps)), "a node represents two witnesses"
+    assert sorted(reps) == active, "the active nodes are not exactly the representatives"
+    state_distance, states = setup.si.state_distance, search.tree.states
+    for witness, rep in enumerate(search.reps):
+        if rep >= 0:
+            assert state_distance(search.witness_states[witness], states[rep]) \
+                <= search.pruning_radius
+    inactive = len(states) - len(active)
+    assert inactive >= 10, "too few replaced nodes to test anything"
+    everything = search.nodes.within(pdef.start, math.inf)
+    assert sorted(everything) == active
+    for k in range(len(states)):  # no query finds an inactive node, a pruned one included
+        assert search.active[search.nodes.nearest(states[k])]
+    # The tree: pruned nodes are inactive leaves of the tree as it was; what is left
+    # is connected to the start and holds the best path.
+    in_tree, parents = search.in_tree, search.tree.parents
+    assert not all(in_tree) and all(in_tree[parents[k]] for k in range(1, len(states))
+                                    if in_tree[k])
+    assert all(in_tree[k] for k in search.tree.path_to(search.best))
+    assert all(search.active[k] or search.children[k] > 0 or search.pinned[k]
+               for k in range(len(states)) if in_tree[k])
+
+
+def test_seed_reproduces_the_output_bit_for_bit():
+    text = COURSE_PROBLEMS[1].read_text()
+    runs = [run_planner(["-grad", "-planner", "sst", "-seed", seed, *more], text)
+            for seed, more in [("3", []), ("3", []), ("4", []),
+                               ("3", ["-optimize", "-iterations", "4000"]),
+                               ("3", ["-optimize", "-iterations", "4000"])]]
+    assert all(run.returncode == 0 for run in runs), [run.stderr for run in runs]
+    first, again, other, optimized, optimized_again = (run.stdout for run in runs)
+    assert first == again and first != other
+    assert optimized == optimized_again and optimized != first
+
+
+def test_registered_as_optimizing_for_kinodynamic_systems_only():
+    entry = PLANNERS["sst"]
+    assert entry.optimizing
+    assert {v for v in Vehicle if entry.plans_for(v.system)} == set(SHIPS)
+    refused = run_planner(["-planner", "sst"], COURSE_PROBLEMS[1].read_text())
+    assert (refused.returncode, refused.stdout) == (2, b"")
+    with pytest.raises(ValueError):
+        setup = grid_setup(parse_problem(GAP_WALL), Vehicle.POINT)
+        sst.solve(setup.si, setup.pdef, StopCondition(), random.Random(0))
+
+
+def test_a_walled_in_goal_ends_at_the_limit_with_no_path():
+    text = "5\n5\n_____\n_###_\n_#_#_\n_###_\n_____\n0.5 0.5\n2.5 2.5\n"
+    setup = _setup(text, Vehicle.SPACESHIP)
+    result = sst.solve(setup.si, setup.pdef, StopCondition(max_iterations=2000),
+                       random.Random(0))
+    assert result.status is PlanStatus.ITERATION_LIMIT and result.path == ()
+    assert result.stats.first_solution_seconds is None and result.stats.improvements == ()
+
+
+@pytest.mark.parametrize("bad", [dict(goal_bias=1.5), dict(selection_radius=-1.0),
+                                 dict(pruning_radius=float("nan"))])
+def test_bad_params_are_rejected(bad):
+    with pytest.raises(ValueError):
+        sst.SSTParams(**bad)
+
+
+def test_the_best_path_stays_in_the_printed_tree_when_its_nodes_turn_inactive():
+    """Replaced representatives on the best path are kept (pinned), so the printed
+    tree holds the printed path; a later answer unpins them."""
+    setup = _setup(SMALL["pendulum"])
+    pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
+    search = sst._Search(setup.si, pdef, random.Random(1), sst.SSTParams())
+    while search.best is None:
+        goal_node = search.iterate()
+        if goal_node is not None:
+            search.accept(goal_node)
+    path = search.tree.path_to(search.best)
+    for k in reversed(path[1:]):  # as if each were replaced by a cheaper node
+        if search.active[k]:
+            search.deactivate(k)
+    assert all(search.in_tree[k] for k in path)
+    result = search.result(PlanStatus.SOLVED, 0.0, [])
+    report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+    assert report.valid, report.first_failure
+    assert {edge[2] for edge in result.edges} >= set(result.path[1:])
+    childless = [k for k in path[1:] if search.children[k] == 0]
+    assert childless, "the old answer's last node has children: nothing to prune"
+    search.accept(0)  # another answer: the old path's inactive leaves are pruned
+    assert not any(search.in_tree[k] for k in childless)
