@@ -19,17 +19,18 @@ from validator.checks import validate_output
 
 SEEDS = range(20)
 SHIPS_SLOW = ("space-2", "space-3")
-"""Ships on these maps take seconds in the test's process (interpreted): seed 0 too is
-slow (the golden test replays them in the unit run)."""
+"""Ships and the Dubins car on these maps take seconds in the test's process
+(interpreted): seed 0 too is slow (the golden test replays the ships in the unit run,
+test_dubins_planning the car)."""
 
 
 def _cases() -> list:
-    """(seed, path, vehicle): seeds 1-19 slow, and seed 0 of a ship on SHIPS_SLOW."""
+    """(seed, path, vehicle): seeds 1-19 slow, and seed 0 of all but the point on SHIPS_SLOW."""
     cases = []
     for seed in seed_sweep(SEEDS):
         for path in COURSE_PROBLEMS:
             for vehicle in Vehicle:
-                slow = seed.marks or (vehicle.is_spaceship and path.stem in SHIPS_SLOW)
+                slow = seed.marks or (vehicle is not Vehicle.POINT and path.stem in SHIPS_SLOW)
                 cases.append(pytest.param(seed.values[0], path, vehicle,
                                           marks=[pytest.mark.slow] if slow else [],
                                           id=f"{seed.values[0]}-{path.stem}-{vehicle.value}"))
