@@ -91,7 +91,7 @@ def grid_problems(draw):
 
 
 VEHICLE_FLAGS = {Vehicle.POINT: [], Vehicle.SPACESHIP: ["-grad"],
-                 Vehicle.LEFT_SPACESHIP: ["-grad", "-left"]}
+                 Vehicle.LEFT_SPACESHIP: ["-grad", "-left"], Vehicle.DUBINS: ["-dubins"]}
 
 
 @pytest.mark.slow  # 24 planner processes of up to 1.5 s each
