@@ -4,8 +4,10 @@ planner that stops at its first solution are a usage error."""
 
 from __future__ import annotations
 
+import json
 import math
 import re
+import sys
 
 import pytest
 
@@ -72,3 +74,15 @@ def test_optimizing_flags_need_an_optimizing_planner(monkeypatch, flags):
                                        (COURSE_DIR / "space-1.sw").read_text())
     assert (status, out) == (2, "")
     assert err.count("\n") == 1 and "stops at its first solution" in err
+
+
+def test_the_validators_json_reports_the_cost_of_a_valid_answer_only(tmp_path):
+    from tests.validator.validator_testlib import run_validator
+    text = (FAMILY / "pendulum-t5.kp").read_text()
+    planner = [sys.executable, "-m", "rrt_cli", "-seed", "1"]
+    done = run_validator(["-json", "--", *planner], text, tmp_path)
+    report = json.loads(done.stdout)
+    assert report["valid"] and report["cost_kind"] == "duration" and report["cost"] > 0
+    done = run_validator(["-json", "--", sys.executable, "-c", "print(1)"], text, tmp_path)
+    report = json.loads(done.stdout)
+    assert not report["valid"] and report["cost"] is None and report["cost_kind"] is None
