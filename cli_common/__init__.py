@@ -210,6 +210,17 @@ def positive_float(text: str) -> float:
     return value
 
 
+def turning_radius(text: str) -> float:
+    """The Dubins car's ``-radius``: a positive number within RADIUS_RANGE."""
+    from planning_core.systems.dubins import RADIUS_RANGE  # only with -radius
+    value = positive_float(text)
+    low, high = RADIUS_RANGE
+    if not low <= value <= high:
+        raise _type_error(f"{_show(text)} is out of range: a turning radius is from {low:g} "
+                          f"to {high:g} map units")
+    return value
+
+
 def bounded_integer(text: str, low: int, high: int, what: str) -> int:
     """An ASCII integer in [low, high]; its digits are counted before int() sees them."""
     if not _INTEGER.fullmatch(text):
@@ -245,7 +256,7 @@ def add_vehicle_flags(parser: argparse.ArgumentParser, title: str) -> None:
         "-left": "spaceship that only thrusts ahead or left (implies -grad)",
         "-dubins": "Dubins car <x, y, heading>: forward only, turning radius -radius; "
                    "printed as its curves sampled at most 0.05 apart (point rows)"})
-    group.add_argument("-radius", type=positive_float, default=None, metavar="R",
+    group.add_argument("-radius", type=turning_radius, default=None, metavar="R",
                        help="with -dubins: the least turning radius in map units "
                             "(default: 0.5)")
 

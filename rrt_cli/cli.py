@@ -28,7 +28,8 @@ import cli_common
 from cli_common import (EXIT_USAGE, add_vehicle_flags, bounded_integer, describe_os_error,
                         is_kinoplan, parse_any_problem, positive_float, positive_int,
                         read_problem_from_stdin, reject_vehicle_flags, reserve_standard_fds,
-                        say, vehicle_from_flags, vehicle_options, write_stdout)
+                        say, turning_radius, vehicle_from_flags, vehicle_options,
+                        write_stdout)
 from planning_core.plan_text import format_plan
 from planning_core.problem_definition import Objective
 from planning_core.setups import grid_setup, kinoplan_setup
@@ -93,7 +94,7 @@ def _known_planner(name: str) -> str:
 
 _SWITCHES = ("-ugrad", "-grad", "-left", "-dubins", "-smooth", "-stats", "-optimize")
 _VALUED = {"-planner": _known_planner, "-seed": seed, "-time": positive_float,
-           "-iterations": positive_int, "-cost": positive_float, "-radius": positive_float}
+           "-iterations": positive_int, "-cost": positive_float, "-radius": turning_radius}
 _DEFAULTS = {"ugrad": False, "grad": False, "left": False, "dubins": False, "radius": None,
              "smooth": False, "stats": False,
              "optimize": False, "cost": None, "planner": DEFAULT_PLANNER, "seed": None,

@@ -21,6 +21,10 @@ from planning_core.worlds.grid import SAMPLE_STEP
 
 DEFAULT_RADIUS = 0.5
 """The turning radius without ``-radius`` (map units)."""
+RADIUS_RANGE = (1e-6, 1e6)
+"""The radii ``-radius`` takes (map units): the Dubins formulas divide by the radius
+(1e-300 overflowed to a traceback) and a planner's curves scale with it (1e300 ran past
+its time limit)."""
 
 
 @dataclass(frozen=True)

@@ -117,6 +117,8 @@ def test_same_seed_same_bytes(monkeypatch):
     (["-dubins", "-radius", "0"], "positive"),
     (["-dubins", "-radius", "-1"], "positive"),
     (["-dubins", "-radius", "nan"], "not a number"),
+    (["-dubins", "-radius", "1e-300"], "out of range"),
+    (["-dubins", "-radius", "1e300"], "out of range"),
     (["-dubins", "-grad"], "cannot be combined"),
     (["-dubins", "-planner", "prm"], "does not support"),
 ])
@@ -129,7 +131,7 @@ def test_usage_errors_are_one_line_exit_2(argv, words):
 
 def test_a_radius_too_big_for_the_map_is_one_line_exit_3(monkeypatch):
     text = COURSE_PROBLEMS[1].read_text()
-    status, out, err = _plan(monkeypatch, text, "-radius", "1e12", "-seed", "1",
+    status, out, err = _plan(monkeypatch, text, "-radius", "1e6", "-seed", "1",
                              "-iterations", "300")
     assert status == 3 and out == ""
     assert len(err.strip().splitlines()) == 1 and "no solution" in err
