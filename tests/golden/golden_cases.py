@@ -67,22 +67,28 @@ def argv(vehicle: str, planner: str, seed: int) -> list[str]:
             "-time", "100000"]
 
 
-# Runs over a second each (measured when golden.json was made): marked slow, as is
-# every run with the second seed (test_golden.py), so the unit run (-m "not slow")
-# replays ~85 (the first seed) and CI replays all.
-SLOW = {
-    "left/rrt/maze-20.sw/1", "left/rrt/maze-20.sw/2", "left/rrt/space-3.sw/1",
-    "left/rrt/space-3.sw/2", "left/rrt/random-d20-20.sw/1", "left/rrt/random-d20-20.sw/2",
-    "left/rrt/space-2.sw/1", "left/rrt/narrow-20.sw/1", "left/rrt/narrow-20.sw/2",
-    "grad/rrt/maze-20.sw/1", "grad/rrt/maze-20.sw/2", "grad/rrt/space-3.sw/1",
-    "family/prmstar/rigid2-scene1.kp/1", "family/prmstar/rigid2-scene1.kp/2",
-    "family/prmstar/rigid2-scene2.kp/1", "family/prmstar/rigid2-scene2.kp/2",
+# The unit run (-m "not slow") replays a sample with the first seed (test_golden.py); CI
+# replays every case both ways. Interpreted: each grid vehicle x planner on one benchmark
+# map, and a family problem per system with every family planner among them; compiled:
+# compiled_quick's.
+UNIT_GRID_PROBLEM = "random-d35-10.sw"
+UNIT_FAMILY = {  # problem -> its planners in the unit run (cheap ones, measured)
+    "family/pendulum-t10.kp": ("rrt", "blossom"), "family/car1-scene3.kp": ("kpiece",),
+    "family/car2-corridors.kp": ("rgrrt",), "family/unicycle-circles.kp": ("kpiece",),
+    "family/arm2-pair3.kp": ("prm", "prmstar", "rrtconnect"), "family/rigid2-scene2.kp": ("rrt",),
 }
+UNIT_SMOOTH = "family/arm2-pair3.kp"
+"""The family problem the unit run replays with -smooth (interpreted)."""
 
 
-FAMILY_QUICK = ("family/pendulum-t3.kp", "family/arm2-pair1.kp", "family/car1-scene2.kp",
-                "family/rigid2-scene3.kp")
-"""The family problems the unit run replays (first seed); CI replays every one."""
+def unit_interpreted(case: tuple[str, str, str, int]) -> bool:
+    """A case the unit run replays interpreted (any seed: the caller picks the first)."""
+    vehicle, planner, problem, _ = case
+    if vehicle == "family":
+        return planner in UNIT_FAMILY.get(problem, ())
+    if vehicle == "family-smooth":
+        return problem == UNIT_SMOOTH
+    return problem == UNIT_GRID_PROBLEM
 
 
 def compiled_quick(case: tuple[str, str, str, int]) -> bool:

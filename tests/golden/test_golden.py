@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from golden_cases import (FAMILY_QUICK, PROBLEM_DIR, SEEDS, SLOW, argv,  # noqa: E402
-                          case_id, cases, compiled_quick)
+from golden_cases import (PROBLEM_DIR, SEEDS, argv, case_id, cases,  # noqa: E402
+                          compiled_quick, unit_interpreted)
 
 from planning_core.kinoplan_text import parse_kinoplan  # noqa: E402
 from planning_core.problem_text import parse_problem  # noqa: E402
@@ -30,16 +30,15 @@ GOLDEN = json.loads((Path(__file__).resolve().parent / "golden.json").read_text(
 
 
 def _params():
-    # The unit run (-m "not slow") replays every planner x vehicle x problem with
-    # the first seed interpreted, and one problem compiled; the rest is marked slow.
+    # The unit run (-m "not slow") replays a sample with the first seed: every planner
+    # on every vehicle and system interpreted, on every vehicle and a system of each kind
+    # compiled (golden_cases); the rest is marked slow.
+    sample = {"interpreted": unit_interpreted, "compiled": compiled_quick}
     for mode in ("interpreted", "compiled"):
         for case in cases():
-            ident = case_id(*case)
-            quick = (ident not in SLOW and case[3] == SEEDS[0]
-                     and (mode == "interpreted" or compiled_quick(case))
-                     and (not case[0].startswith("family") or case[2] in FAMILY_QUICK))
+            quick = case[3] == SEEDS[0] and sample[mode](case)
             marks = [] if quick else [pytest.mark.slow]
-            yield pytest.param(mode, case, id=f"{mode}/{ident}", marks=marks)
+            yield pytest.param(mode, case, id=f"{mode}/{case_id(*case)}", marks=marks)
 
 
 def test_every_case_is_recorded():
