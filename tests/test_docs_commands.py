@@ -3,9 +3,10 @@
 The commands are taken from the fenced shell blocks of README.md and docs/*.md, so a
 renamed flag, a moved problem file or a deleted module fails here, not for a new
 user. Planner and validator examples run for real (``map.sw`` and ``problem.sw``,
-the docs' placeholders, stand for a course problem); benchmark commands, which take
-minutes, are parsed by the benchmark CLI's own parser; other ``python -m`` modules
-must exist. Synopsis lines (``[-flag | ...]``) are not commands and are skipped.
+the docs' placeholders, stand for a course problem; a -time over MAX_TIME is cut to
+it); benchmark commands, which take minutes, are parsed by the benchmark CLI's own
+parser; other ``python -m`` modules must exist. Synopsis lines (``[-flag | ...]``)
+are not commands and are skipped.
 """
 
 from __future__ import annotations
@@ -24,6 +25,9 @@ PLACEHOLDERS = {"map.sw": "benchmarks/problems/course/space-1.sw",
                 "problem.sw": "benchmarks/problems/course/space-1.sw"}
 BLOCK = re.compile(r"```(?:sh|bash|console)?\n(.*?)```", re.S)
 RUNNABLE = ("./run.sh", "rrt-validator", "./rrt-validator")
+MAX_TIME = 1
+"""Seconds a planner example may run (a longer -time is cut to it: what the example
+shows is its flags and files, not how much an -optimize run improves)."""
 
 
 def _doc_commands() -> list[tuple[str, str]]:
@@ -70,6 +74,8 @@ def test_planner_and_validator_examples_run(doc, command):
     argv = words[:words.index("<")]
     if words[0] == "./run.sh" and "-seed" not in argv:
         argv += ["-seed", "1"]
+    if "-time" in argv and float(argv[argv.index("-time") + 1]) > MAX_TIME:
+        argv[argv.index("-time") + 1] = str(MAX_TIME)  # an -optimize run: to its limit
     with open(ROOT / stdin_path) as stdin:
         done = subprocess.run(argv, cwd=ROOT, stdin=stdin, capture_output=True, text=True,
                               timeout=60)

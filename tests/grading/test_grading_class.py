@@ -34,7 +34,7 @@ def graded(tmp_path_factory):
     submissions, problems, outside = make_class(base, list(CLASS), PROBLEMS)
     out = base / "out"
     status = main(["--submissions", str(submissions), "--problems", str(problems),
-                   "--out", str(out), "--modes", ",".join(MODES), "--jobs", "2",
+                   "--out", str(out), "--modes", ",".join(MODES), "--jobs", "4",
                    "--timeout", "4"])
     db = sqlite3.connect(out / "grades.sqlite")
     db.row_factory = sqlite3.Row

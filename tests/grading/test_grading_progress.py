@@ -82,8 +82,11 @@ def _class(tmp_path: Path) -> list[str]:
             "--out", str(tmp_path / "out"), "--modes", "point,grad"]
 
 
+# A long end-to-end run (a grading held by two hanging runs): CI only; the line's cadence
+# is the first test's, on a clock.
+@pytest.mark.slow
 def test_progress_lines_with_stdout_and_stderr_redirected_to_files(tmp_path):
-    argv = _class(tmp_path) + ["--timeout", "5", "--progress-every", "1"]
+    argv = _class(tmp_path) + ["--timeout", "3", "--progress-every", "0.5"]
     with open(tmp_path / "stdout", "wb") as out, open(tmp_path / "stderr", "wb") as err:
         done = subprocess.run(["rrt-grade", *argv], stdout=out, stderr=err, timeout=300,
                               env=dict(os.environ, PATH=f"{ROOT}:{os.environ['PATH']}"))
@@ -103,7 +106,7 @@ def test_progress_lines_with_stdout_and_stderr_redirected_to_files(tmp_path):
         "submission", "valid", "runs", "valid_point", "valid_grad", "score"]
 
 
-@pytest.mark.parametrize("site", [False, True])
+@pytest.mark.parametrize("site", [False, pytest.param(True, marks=pytest.mark.slow)])
 def test_on_a_terminal_a_bar(tmp_path, site):
     """``site``: the interpreter's site-packages (tqdm's bar); without: the plain line."""
     if site:

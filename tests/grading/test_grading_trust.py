@@ -146,7 +146,7 @@ def test_a_run_that_answers_then_outlives_its_timeout_is_not_valid(tmp_path):
     submissions, problems = _class(tmp_path, {"good": ("", 'exec "{run}" "$@"'),
                                               "late": ("", '"{run}" "$@"\nsleep 100')})
     out = tmp_path / "out"
-    assert main(_argv(submissions, problems, out, "--modes", "point,grad", "--timeout", "8")) == 0
+    assert main(_argv(submissions, problems, out, "--modes", "point,grad", "--timeout", "4")) == 0
     db = sqlite3.connect(out / "grades.sqlite")
     rows = db.execute("SELECT verdict, valid, timed_out, output_bytes FROM runs "
                       "WHERE submission = 'late'").fetchall()

@@ -71,7 +71,7 @@ def test_walled_off_goal_point_vehicle_ends_at_once_with_exit_3():
 
 
 @pytest.mark.parametrize("limit_flags,words", [
-    (["-time", "1"], b"time limit reached"),
+    (["-time", "0.3"], b"time limit reached"),
     (["-iterations", "300"], b"iteration limit reached"),
 ])
 def test_walled_off_goal_spaceship_ends_by_its_limit_with_exit_3(limit_flags, words):

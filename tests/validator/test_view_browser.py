@@ -7,6 +7,7 @@ shows its marker and message. Skipped, with one line, where there is no Chromium
 
 from __future__ import annotations
 
+import functools
 import io
 import subprocess
 
@@ -42,7 +43,10 @@ def browser():
         yield chromium
 
 
-def plan(case: str, tmp_path) -> tuple[str, list[str], str]:
+@functools.lru_cache(maxsize=None)
+def plan(case: str) -> tuple[str, list[str], str]:
+    """The case's problem, validator flags and our planner's answer (planned once per
+    worker: the tests that draw it and the ones that fail it share the run)."""
     problem, planner_flags, flags, _ = CASES[case]
     text = (PROBLEMS / problem).read_text()
     done = subprocess.run([str(ROOT / "run.sh"), *planner_flags], input=text, text=True,
@@ -89,7 +93,7 @@ def slide(browser: Chromium, value: int) -> None:
 
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_the_view_draws_the_run_and_grows_the_tree(case, browser, tmp_path):
-    text, flags, answer = plan(case, tmp_path)
+    text, flags, answer = plan(case)
     stats = load(browser, view(text, flags, answer, tmp_path), case)
     assert browser.console_errors() == [] and stats["error"] is None
     pixels = canvas_pixels(browser)
@@ -118,9 +122,15 @@ def shifted(answer: str, by: float = 0.3) -> str:
     return "\n".join(lines) + "\n"
 
 
-@pytest.mark.parametrize("case", sorted(CASES))
+# The unit run fails a grid, a kinodynamic and an arm answer (its configuration-space
+# view); CI all six.
+FAIL_QUICK = ("grid", "pendulum", "arm2")
+
+
+@pytest.mark.parametrize("case", [pytest.param(case, marks=() if case in FAIL_QUICK
+                                               else pytest.mark.slow) for case in sorted(CASES)])
 def test_a_failing_answer_shows_its_marker_and_message(case, browser, tmp_path):
-    text, flags, answer = plan(case, tmp_path)
+    text, flags, answer = plan(case)
     load(browser, view(text, flags, shifted(answer), tmp_path), case)
     assert browser.console_errors() == []
     message = browser.evaluate("document.getElementById('failure').textContent")
@@ -132,7 +142,7 @@ def test_a_failing_answer_shows_its_marker_and_message(case, browser, tmp_path):
 
 def test_what_a_planner_wrote_is_shown_as_text(browser, tmp_path):
     hostile = "</script><img src=x onerror=alert(1)><b>bold</b>"
-    text, flags, _ = plan("grid", tmp_path)
+    text, flags, _ = plan("grid")
     page = view(text, flags, f"1\n{hostile}\n0\n", tmp_path)
     load(browser, page)
     assert browser.console_errors() == []
@@ -176,7 +186,7 @@ def mouse(browser: Chromium, kind: str, x: float, y: float, **more) -> None:
 
 
 def test_zoom_pan_layers_and_the_pointer_coordinates(browser, tmp_path):
-    text, flags, answer = plan("grid", tmp_path)
+    text, flags, answer = plan("grid")
     load(browser, view(text, flags, answer, tmp_path))
     left, top, right, bottom = browser.evaluate(
         "(() => { const r = document.querySelector('canvas').getBoundingClientRect();"
