@@ -287,7 +287,8 @@ def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
              "from tests.planning_core.worlds.test_link_tests import check_against_reference\n"
              "from tests.planning_core.test_angles import check_remainder\n"
              "from tests.planning_core.worlds.test_segment_tests import check_segments\n"
-             "check_against_reference(seed=7)\ncheck_segments(seed=8)\ncheck_remainder(seed=9)\n"
+             "check_against_reference(seed=7, count=800)\ncheck_segments(seed=8)\n"
+             "check_remainder(seed=9)\n"
              "import planning_core.worlds.link_tests as t\nprint(t.__file__)\n")
     done = run_probe(probe, timeout=120)
     assert done.returncode == 0 and done.stdout.startswith(compiled.BUILD_DIR), done.stderr

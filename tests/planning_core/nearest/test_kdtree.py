@@ -110,7 +110,7 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
 @pytest.mark.parametrize("name", sorted(SPACES))
 @pytest.mark.parametrize("leaf_capacity", [2, 8])
 def test_equals_linear_scan(name, leaf_capacity):
-    compare(SPACES[name](), n_points=400, n_queries=500, leaf_capacity=leaf_capacity,
+    compare(SPACES[name](), n_points=400, n_queries=250, leaf_capacity=leaf_capacity,
             seed=len(name) * 10 + leaf_capacity, scan_every=3)
 
 
