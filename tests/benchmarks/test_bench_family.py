@@ -130,6 +130,9 @@ def test_planner_params_sets_a_field_and_refuses_an_unknown_one():
     assert outcome("benchmarks.planner_params", "goal_bias=0.5") != plain
 
 
+# A long end-to-end run (the command twice, with its plots): CI only; the tests above
+# cover the preset's runs, rows and report in process.
+@pytest.mark.slow
 def test_the_command_runs_a_family_preset_end_to_end(tmp_path):
     done = run(["benchmarks", "--preset", "family-quick", "--planners", "rrt", "--problems",
                 "pendulum-t10", "--seeds", "1", "--no-ompl", "--out", str(tmp_path)])

@@ -167,6 +167,8 @@ def test_plots_draw_with_one_run_and_with_twenty(tmp_path):
         assert (tmp_path / f"plots-{seeds}.pdf").stat().st_size > 1000
 
 
+# A long end-to-end run (the command, both planners, OMPL's): CI only.
+@pytest.mark.slow
 def test_the_smoke_preset_runs_ompl_rrtstar_end_to_end(tmp_path):
     pytest.importorskip("ompl", reason="the ompl package is not installed")
     from benchmarks.cli import main

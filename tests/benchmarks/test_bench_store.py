@@ -102,6 +102,9 @@ def made_up_store(out):
     return rows
 
 
+# Planner Arena's loader and its plots (seconds of imports): CI only; in the unit run
+# test_bench_optimal loads a store with the same loader.
+@pytest.mark.slow
 def test_planner_arena_loads_the_store_with_its_own_loader(tmp_path):
     database = pytest.importorskip(
         "plannerarena.database", reason="plannerarena is not installed (the project's "

@@ -19,7 +19,7 @@ from rrt_cli.graph_search import astar
 from rrt_cli.planners import prm, prmstar, rrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from rrt_cli.planners.paths import path_length
-from tests.conftest import COURSE_PROBLEMS, run_planner, solve_on
+from tests.conftest import COURSE_PROBLEMS, run_planner, seed_sweep, solve_on
 from validator.checks import validate_output
 
 PLANNERS = {"prm": prm, "prmstar": prmstar}
@@ -80,11 +80,11 @@ def test_course_problems_20_seeds_all_valid(path, name):
     maze(11, random.Random(5)), random_field(15, 0.3, random.Random(3)),
     narrow_passage(14, random.Random(2)),
 ], ids=["maze-11", "random-15", "narrow-14"])
-def test_generated_maps_valid(problem, name):
-    for seed in range(4):
-        result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT), StopCondition(time_limit=30),
-                                      random.Random(seed))
-        assert_valid_roadmap_answer(problem, result)
+@pytest.mark.parametrize("seed", seed_sweep(range(4)))
+def test_generated_maps_valid(problem, name, seed):
+    result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT),
+                      StopCondition(time_limit=30), random.Random(seed))
+    assert_valid_roadmap_answer(problem, result)
 
 
 @pytest.mark.slow  # a comparison over seeds and maps: seconds
