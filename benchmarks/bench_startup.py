@@ -97,6 +97,13 @@ def table(results: dict[str, Pairs]) -> str:
     return "\n".join(lines)
 
 
+def _interpreter() -> str:
+    """This interpreter, relative to the checkout when it is the checkout's (.venv): the
+    commands run there, and a results page names no one's folder."""
+    inside = os.path.relpath(sys.executable, ROOT)
+    return sys.executable if inside.startswith("..") else inside
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="bench_startup", description="Whole-process time of two planner commands, "
@@ -109,7 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--ours", action="append",
                         help="our command (default: ./run.sh -seed 1); repeat it to "
                              "measure several in the same rounds")
-    parser.add_argument("--theirs", default=f"{shlex.quote(sys.executable)} "
+    parser.add_argument("--theirs", default=f"{shlex.quote(_interpreter())} "
                         "-m benchmarks.ompl_planner -seed 1", help="the peer's command")
     parser.add_argument("--page", type=Path, default=None, metavar="FILE",
                         help="also write the tables into this Markdown results page")

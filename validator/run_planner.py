@@ -129,9 +129,9 @@ def start_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DE
         containment.close()
         return PlannerRun(command, b"", False, start_error=str(error), output_cap=output_cap,
                           timeout=timeout, stderr_cap=stderr_cap)
-    containment.started(process.pid)
     started = StartedPlanner(command, process, containment, began, timeout, stderr_cap)
     try:
+        containment.started(process.pid)
         started.pump = _Pump(process, stdin_data, output_cap, stderr)
         started.pump.write_now()
     except BaseException:
