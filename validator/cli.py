@@ -355,11 +355,25 @@ def _run(command: list[str], problem_bytes: bytes, timeout: float, prepare):
     if not isinstance(started, StartedPlanner):  # it could not be started
         return started, prepare()
     try:
-        prepared = prepare()
+        prepared = _ctrl_c_after(prepare)
     except BaseException:
         started.stop()
         raise
     return started.finish(), prepared
+
+
+def _ctrl_c_after(work):
+    """``work()``, a Ctrl-C meanwhile taken when it returns: CPython remembers a
+    KeyboardInterrupt raised inside ``exec`` of a string (how dataclasses and
+    namedtuple make their methods, at import) and ends the process by SIGINT at exit,
+    not with our status 130."""
+    if not hasattr(signal, "pthread_sigmask"):
+        return work()
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        return work()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
