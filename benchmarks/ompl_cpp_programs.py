@@ -22,8 +22,8 @@ FLAGS = ("-O2", "-ffp-contract=off", "-std=c++17")
 
 def binary(name: str) -> Path | None:
     """``.build/NAME`` from ``benchmarks/ompl_cpp/NAME.cpp``, compiled when missing or
-    older than its source or a header beside it; None (one line on stderr when the build fails) without g++
-    or OMPL's headers."""
+    older than its source or a header beside it (common.h); None (one line on stderr when
+    the build fails) without g++ or OMPL's headers."""
     source, target = SOURCES / f"{name}.cpp", BUILD / name
     newest = max(path.stat().st_mtime for path in (source, *SOURCES.glob("*.h")))
     if target.exists() and target.stat().st_mtime >= newest:

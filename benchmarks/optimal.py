@@ -8,8 +8,9 @@ planner not merged yet), or one of OMPL's the bindings do not offer, is skipped 
 line on stderr, so the preset runs today and picks the planners up when they exist.
 
 * ``optimal``: sst, rrtstar, informed (ours) and OMPL's SST, RRT*, Informed RRT* (its
-  Python bindings, and C++ through benchmarks/ompl_cpp_planner.py) on the course maps and two small suite maps (point vehicle, both ships), arm2's five pairs,
-  the rigid2 scenes and one problem of each kinodynamic family system; 20 seeds, 10 s.
+  Python bindings, and C++ through benchmarks/ompl_cpp_planner.py) on the course maps and
+  two small suite maps (point vehicle, both ships), arm2's five pairs, the rigid2 scenes
+  and one problem of each kinodynamic family system; 20 seeds, 10 s.
 * ``optimal-smoke``: one small point problem and one arm2 pair, 2 seeds, 2 s (tests).
 """
 

@@ -6,6 +6,9 @@
 
 #include <ompl/base/OptimizationObjective.h>
 #include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/control/planners/sst/SST.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -80,6 +83,33 @@ struct Run {
         }
     }
 };
+
+// RRT* or Informed RRT* (OMPL's defaults), its best cost read by the run.
+inline ompl::base::PlannerPtr starPlanner(const ompl::base::SpaceInformationPtr &info,
+                                          bool informed, Run &run) {
+    std::shared_ptr<ompl::geometric::RRTstar> planner =
+        informed ? std::make_shared<ompl::geometric::InformedRRTstar>(info)
+                 : std::make_shared<ompl::geometric::RRTstar>(info);
+    run.bestCost = [planner] { return planner->bestCost().value(); };
+    return planner;
+}
+
+// SST with its best solution's cost readable (a protected member in OMPL 1.5).
+class CostedSST : public ompl::control::SST {
+public:
+    using ompl::control::SST::SST;
+    double best() const { return prevSolutionCost_.value(); }
+};
+
+// SST (OMPL's goal bias, 0.05) with the given radii, its best cost read by the run.
+inline ompl::base::PlannerPtr sstPlanner(const ompl::control::SpaceInformationPtr &info,
+                                         double selection, double pruning, Run &run) {
+    auto planner = std::make_shared<CostedSST>(info);
+    planner->setSelectionRadius(selection);
+    planner->setPruningRadius(pruning);
+    run.bestCost = [planner] { return planner->best(); };
+    return planner;
+}
 
 // OMPL's generator seeded as benchmarks/ompl_adapters.py's ompl_seed (32 bits, not 0), its
 // log silenced.

@@ -35,13 +35,10 @@
 #include <ompl/base/spaces/SO2StateSpace.h>
 #include <ompl/control/SimpleSetup.h>
 #include <ompl/control/planners/rrt/RRT.h>
-#include <ompl/control/planners/sst/SST.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/geometric/planners/rrt/RRTstar.h>
 
 #include <algorithm>
 #include <iostream>
@@ -349,7 +346,8 @@ private:
 // direct informed sampler refuses our compound space, as in the Python peer).
 class MetricLength : public ob::OptimizationObjective {
 public:
-    MetricLength(const ob::SpaceInformationPtr &si, const Family &f) : ob::OptimizationObjective(si), f_(f) {}
+    MetricLength(const ob::SpaceInformationPtr &si, const Family &f)
+        : ob::OptimizationObjective(si), f_(f) {}
     ob::Cost stateCost(const ob::State *) const override { return identityCost(); }
     ob::Cost motionCost(const ob::State *a, const ob::State *b) const override {
         double qa[8], qb[8];
@@ -363,20 +361,14 @@ private:
 // A kinodynamic motion's duration: its slices times DT.
 class Duration : public ob::OptimizationObjective {
 public:
-    Duration(const ob::SpaceInformationPtr &si, const Family &f) : ob::OptimizationObjective(si), f_(f) {}
+    Duration(const ob::SpaceInformationPtr &si, const Family &f)
+        : ob::OptimizationObjective(si), f_(f) {}
     ob::Cost stateCost(const ob::State *) const override { return identityCost(); }
     ob::Cost motionCost(const ob::State *a, const ob::State *b) const override {
         return ob::Cost((f_.slices(b) - f_.slices(a)) * f_.p.dt);
     }
 private:
     const Family &f_;
-};
-
-// SST with its best solution's cost readable (a protected member in OMPL 1.5).
-class CostedSST : public oc::SST {
-public:
-    using oc::SST::SST;
-    double best() const { return prevSolutionCost_.value(); }
 };
 
 // ---- input ----
@@ -420,7 +412,8 @@ static bool readSystem(std::istream &in, Problem &p) {
         if (!(in >> word >> p.scheme >> p.dt >> p.kmin >> p.kmax >> p.param >> word >> count)
             || count < 1 || count > 8 || p.kmin < 1 || p.kmax < p.kmin) return false;
         p.controlLow.resize(count); p.controlHigh.resize(count);
-        for (int i = 0; i < count; ++i) if (!(in >> p.controlLow[i] >> p.controlHigh[i])) return false;
+        for (int i = 0; i < count; ++i)
+            if (!(in >> p.controlLow[i] >> p.controlHigh[i])) return false;
         if (!(in >> word >> p.selection >> p.pruning)) return false;
     }
     if (p.system == "arm2") return static_cast<bool>(in >> word >> p.bx >> p.by >> p.l1 >> p.l2);
@@ -557,14 +550,13 @@ static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
     }
     const bool informed = planner == "informed";
     ob::OptimizationObjectivePtr objective;
-    if (f.exactMetric && !informed) objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
-    else objective = std::make_shared<MetricLength>(info, f);
+    if (f.exactMetric && !informed)
+        objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
+    else
+        objective = std::make_shared<MetricLength>(info, f);
     run.setThreshold(*objective);
     setup.setOptimizationObjective(objective);
-    std::shared_ptr<og::RRTstar> chosen = informed ? std::make_shared<og::InformedRRTstar>(info)
-                                                   : std::make_shared<og::RRTstar>(info);
-    run.bestCost = [chosen] { return chosen->bestCost().value(); };
-    return chosen;
+    return ompl_cpp::starPlanner(info, informed, run);
 }
 
 // Control RRT or SST on a kinodynamic problem.
@@ -579,11 +571,7 @@ static ob::PlannerPtr kinodynamicPlanner(oc::SimpleSetup &setup, const Family &f
     auto objective = std::make_shared<Duration>(info, f);
     run.setThreshold(*objective);
     setup.getProblemDefinition()->setOptimizationObjective(objective);
-    auto sst = std::make_shared<CostedSST>(info);
-    sst->setSelectionRadius(f.p.selection);
-    sst->setPruningRadius(f.p.pruning);
-    run.bestCost = [sst] { return sst->best(); };
-    return sst;
+    return ompl_cpp::sstPlanner(info, f.p.selection, f.p.pruning, run);
 }
 
 // ---- planning and output ----
@@ -608,7 +596,10 @@ static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
     if (solved) {
         const og::PathGeometric &path = setup.getSolutionPath();
         std::printf("%zu\n", path.getStateCount());
-        for (size_t k = 0; k < path.getStateCount(); ++k) { printState(f, path.getState(k)); std::printf("\n"); }
+        for (size_t k = 0; k < path.getStateCount(); ++k) {
+            printState(f, path.getState(k));
+            std::printf("\n");
+        }
         std::printf("0\n");
     }
     ob::PlannerData data(info);
@@ -635,11 +626,15 @@ static bool solveKinodynamic(Family &f, const std::string &planner, Run &run) {
     const size_t m = f.p.controlLow.size();
     auto controls = std::make_shared<oc::RealVectorControlSpace>(space, m);
     ob::RealVectorBounds bounds(m);
-    for (size_t j = 0; j < m; ++j) { bounds.setLow(j, f.p.controlLow[j]); bounds.setHigh(j, f.p.controlHigh[j]); }
+    for (size_t j = 0; j < m; ++j) {
+        bounds.setLow(j, f.p.controlLow[j]);
+        bounds.setHigh(j, f.p.controlHigh[j]);
+    }
     controls->setBounds(bounds);
     auto info = std::make_shared<oc::SpaceInformation>(space, controls);
     setValidity(*info, f);
-    info->setStatePropagator([&f](const ob::State *from, const oc::Control *c, double, ob::State *to) {
+    info->setStatePropagator([&f](const ob::State *from, const oc::Control *c, double,
+                                  ob::State *to) {
         double q[8], next[8];  // one slice: the step is DT
         f.get(from, q);
         f.slice(q, c->as<oc::RealVectorControlSpace::ControlType>()->values, next);
@@ -665,7 +660,8 @@ static bool solveKinodynamic(Family &f, const std::string &planner, Run &run) {
 int main(int argc, char **argv) {
     const bool optimize = ompl_cpp::optimizeFlag(argc, argv, 4);
     if (argc != 4 && !optimize) {
-        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME SEED [optimize]\n");
+        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME SEED "
+                             "[optimize]\n");
         return 2;
     }
     const std::string planner = argv[1];
@@ -676,7 +672,8 @@ int main(int argc, char **argv) {
     }
     const bool geometric = planner == "rrtconnect" || planner == "rrtstar" || planner == "informed";
     if (f.p.kinodynamic ? geometric : planner == "sst") {
-        std::fprintf(stderr, "family_ompl: %s does not plan for %s\n", planner.c_str(), f.p.system.c_str());
+        std::fprintf(stderr, "family_ompl: %s does not plan for %s\n", planner.c_str(),
+                     f.p.system.c_str());
         return 2;
     }
     if (!geometric && planner != "rrt" && planner != "sst") {
@@ -687,6 +684,7 @@ int main(int argc, char **argv) {
     Run run;
     run.limit = std::stod(argv[2]);
     run.optimize = optimize;
-    const bool solved = f.p.kinodynamic ? solveKinodynamic(f, planner, run) : solveGeometric(f, planner, run);
+    const bool solved = f.p.kinodynamic ? solveKinodynamic(f, planner, run)
+                                         : solveGeometric(f, planner, run);
     return solved ? 0 : 3;
 }

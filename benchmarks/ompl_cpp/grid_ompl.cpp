@@ -21,13 +21,10 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/control/SimpleSetup.h>
 #include <ompl/control/planners/rrt/RRT.h>
-#include <ompl/control/planners/sst/SST.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/geometric/planners/rrt/RRTstar.h>
 
 #include <iostream>
 
@@ -59,14 +56,12 @@ static ob::PlannerPtr pointOptimizer(og::SimpleSetup &setup, bool informed, Run 
     auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
     run.setThreshold(*objective);
     setup.setOptimizationObjective(objective);
-    std::shared_ptr<og::RRTstar> planner = informed ? std::make_shared<og::InformedRRTstar>(info)
-                                                    : std::make_shared<og::RRTstar>(info);
-    run.bestCost = [planner] { return planner->bestCost().value(); };
-    return planner;
+    return ompl_cpp::starPlanner(info, informed, run);
 }
 
 static ob::PlannerPtr pointPlanner(og::SimpleSetup &setup, const std::string &mode, Run &run) {
-    if (mode == "rrtstar" || mode == "informed") return pointOptimizer(setup, mode == "informed", run);
+    if (mode == "rrtstar" || mode == "informed")
+        return pointOptimizer(setup, mode == "informed", run);
     auto info = setup.getSpaceInformation();
     if (mode == "rrtconnect") return std::make_shared<og::RRTConnect>(info);
     auto rrt = std::make_shared<og::RRT>(info);
@@ -132,13 +127,6 @@ public:
     }
 };
 
-// SST with its best solution's cost readable (a protected member in OMPL 1.5).
-class CostedSST : public oc::SST {
-public:
-    using oc::SST::SST;
-    double best() const { return prevSolutionCost_.value(); }
-};
-
 static void propagateShip(const Grid &g, const ob::State *from, const oc::Control *c,
                           ob::State *to) {
     const double *s = values(from);
@@ -171,11 +159,7 @@ static ob::PlannerPtr shipPlanner(oc::SimpleSetup &setup, bool sst, Run &run) {
     auto objective = std::make_shared<PositionLength>(info);
     run.setThreshold(*objective);
     setup.getProblemDefinition()->setOptimizationObjective(objective);
-    auto planner = std::make_shared<CostedSST>(info);
-    planner->setSelectionRadius(SHIP_SST_RADIUS);
-    planner->setPruningRadius(SHIP_SST_RADIUS);
-    run.bestCost = [planner] { return planner->best(); };
-    return planner;
+    return ompl_cpp::sstPlanner(info, SHIP_SST_RADIUS, SHIP_SST_RADIUS, run);
 }
 
 static void printShipPath(const oc::PathControl &path) {
@@ -248,7 +232,8 @@ int main(int argc, char **argv) {
     if (mode == "point" || mode == "rrtconnect" || mode == "rrtstar" || mode == "informed")
         solved = solvePoint(g, mode, run);
     else if (mode == "ship" || mode == "sst") solved = solveShip(g, 2.0 * M_PI, mode == "sst", run);
-    else if (mode == "left" || mode == "sst-left") solved = solveShip(g, M_PI, mode == "sst-left", run);
+    else if (mode == "left" || mode == "sst-left")
+        solved = solveShip(g, M_PI, mode == "sst-left", run);
     else { std::fprintf(stderr, "grid_ompl: unknown mode %s\n", mode.c_str()); return 2; }
     return solved ? 0 : 3;
 }

@@ -221,7 +221,8 @@ def test_the_smoke_preset_runs_ompl_in_cpp_end_to_end(tmp_path):
     assert all(r.solved and r.progress for r in rows)
     assert all(parse_progress(f"x progress: {r.progress}")[-1][1] == pytest.approx(
         r.best_cost, rel=1e-8) for r in rows)
-    assert "| arm2     | arm2-pair1      | OMPL C++ Informed RRT*" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "| arm2     | arm2-pair1      | OMPL C++ Informed RRT*" in report
 
 
 def test_the_ompl_peer_refuses_optimize_for_a_planner_that_stops(tmp_path):
