@@ -13,12 +13,13 @@ finite visibility graph as for the point (``benchmarks/shortest_path.py``). Inst
    motion with the real check; an edge that fails is dropped and the search repeated.
 2. **String pulling**: from each vertex, the farthest later vertex it reaches by one
    valid straight motion (fewer, longer segments; the path only shortens).
-3. **Elastic refinement**, in rounds: segments are cut at most ``spacing`` long,
-   every inner vertex slides toward the straight line between its neighbours as far as
-   both its motions stay valid (halving the step until they do), vertices whose
-   neighbours see each other are dropped; ``spacing`` halves each round, down to
-   ``min_spacing``. The rounds stop when one shortens the path by less than
-   ``tolerance`` (0.1%) of its length.
+3. **Elastic refinement**, in rounds: segments are cut at most ``spacing`` long (a
+   cut whose pieces are not valid at their own samples, along a curved obstacle, is
+   made a hair to the side), every inner vertex slides toward the straight line
+   between its neighbours as far as both its motions stay valid (halving the step
+   until they do), vertices whose neighbours see each other are dropped; ``spacing``
+   halves each round, down to ``min_spacing``. The rounds stop when one shortens the
+   path by less than ``tolerance`` (0.1%) of its length.
 
 What this guarantees: the path is valid by the validator's checks (every motion is
 tested by them before it is kept), so its length is an upper bound of the true
@@ -201,8 +202,27 @@ def _subdivide(search: _Search, points: list[State], spacing: float) -> list[Sta
         ends = [a, *cut, b]
         if all(search.free(p, q) for p, q in zip(ends, ends[1:])):
             out += cut
+        elif pieces > 1:  # a piece's own samples touch: a midpoint a little to one side
+            out += _offset_midpoint(search, a, b)
         out.append(b)
     return out
+
+
+OFFSETS = (0.001, -0.001, 0.003, -0.003, 0.01, -0.01)
+"""Radians a refused cut may move off its segment, tried in turn (either side)."""
+
+
+def _offset_midpoint(search: _Search, a: State, b: State) -> list[State]:
+    """A point beside the middle of a -> b from which both halves are valid, or none.
+    A segment that runs along a curved obstacle, valid at its own samples, cannot be
+    cut on itself; cut a hair to its side, the next slides pull it taut again."""
+    length = _distance(a, b)
+    normal = ((a[1] - b[1]) / length, (b[0] - a[0]) / length)
+    for offset in OFFSETS:
+        middle = ((a[0] + b[0]) / 2 + offset * normal[0], (a[1] + b[1]) / 2 + offset * normal[1])
+        if search.free(a, middle) and search.free(middle, b):
+            return [middle]
+    return []
 
 
 def _slide(search: _Search, points: list[State], halvings: int = 8) -> list[State]:
