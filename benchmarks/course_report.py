@@ -143,6 +143,11 @@ def _median(values: list[float]) -> str:
     return f"{statistics.median(values):.3f}" if values else "–"
 
 
+def _seconds(values: list[float]) -> str:
+    finite = [v for v in values if math.isfinite(v)]
+    return f"{statistics.median(finite):.4f}" if finite else "–"
+
+
 def _mean(values: list[float]) -> str:
     return f"{statistics.fmean(values):.2f}" if values else "–"
 
@@ -179,7 +184,7 @@ def table(rows: list[dict], budget: float) -> list[str]:
             c = cells[name]
             line += [f"{c['valid']}/{c['runs']}",
                      f"{_mean(c['lengths'])} ({_median(c['lengths'])})",
-                     _median([t for t in c["first"] if math.isfinite(t)])]
+                     _seconds(c["first"])]
         base = cells["rrt"]["lengths"]
         line += [f"{statistics.fmean(cells[n]['lengths']) / statistics.fmean(base):.2f}"
                  if base and cells[n]["lengths"] else "–" for n in names[1:]]
@@ -188,17 +193,31 @@ def table(rows: list[dict], budget: float) -> list[str]:
 
 
 def overall(rows: list[dict], budget: float) -> list[str]:
-    """Per vehicle, over every map: each setting's mean length of the valid answers and
-    median first-solution time, the report's kind of figure."""
-    lines = ["| vehicle | setting | valid | mean length | median length | median first s |",
-             "|---|---|---|---|---|---|"]
+    """Per vehicle, over every map, the report's kind of figure: each RRT* setting's
+    runs solved, and over the runs (map and seed) where both RRT and it gave a valid
+    answer, the mean lengths and their ratio (paired, so that a map only one of them
+    solves does not move the means)."""
+    lines = ["| vehicle | setting | valid (rrt's) | paired runs | rrt: mean length | "
+             "rrt\\*: mean length | ratio | median first s (rrt's) |",
+             "|---|---|---|---|---|---|---|---|"]
     for vehicle in VEHICLES:
-        for name in settings(budget):
-            c = cell([r for r in rows if (r["vehicle"], r["setting"]) == (vehicle.name, name)])
-            if c["runs"]:
-                lines.append(f"| {vehicle.name} | {name} | {c['valid']}/{c['runs']} | "
-                             f"{_mean(c['lengths'])} | {_median(c['lengths'])} | "
-                             f"{_median([t for t in c['first'] if math.isfinite(t)])} |")
+        mine = [r for r in rows if r["vehicle"] == vehicle.name]
+        base = {(r["map"], r["seed"]): float(r["length"]) for r in mine
+                if r["setting"] == "rrt" and r["valid"] == "True"}
+        base_cell = cell([r for r in mine if r["setting"] == "rrt"])
+        for name in list(settings(budget))[1:]:
+            runs = [r for r in mine if r["setting"] == name]
+            if not runs:
+                continue
+            c = cell(runs)
+            pairs = [(base[(r["map"], r["seed"])], float(r["length"])) for r in runs
+                     if r["valid"] == "True" and (r["map"], r["seed"]) in base]
+            theirs, ours = [p[0] for p in pairs], [p[1] for p in pairs]
+            ratio = f"{statistics.fmean(ours) / statistics.fmean(theirs):.2f}" if pairs else "–"
+            lines.append(f"| {vehicle.name} | {name} | {c['valid']}/{c['runs']} "
+                         f"({base_cell['valid']}/{base_cell['runs']}) | {len(pairs)} | "
+                         f"{_mean(theirs)} | {_mean(ours)} | {ratio} | "
+                         f"{_seconds(c['first'])} ({_seconds(base_cell['first'])}) |")
     return lines
 
 
