@@ -20,6 +20,7 @@ import math
 import os
 import re
 import sys
+from types import SimpleNamespace
 
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, parse_problem
@@ -236,6 +237,51 @@ def bounded_integer(text: str, low: int, high: int, what: str) -> int:
 def positive_int(text: str) -> int:
     """A count (an iteration limit): an integer in [1, 2^63)."""
     return bounded_integer(text, 1, MAX_COUNT, "expected an integer in [1, 2^63)")
+
+
+# ----- the usual command lines without argparse --------------------------------------
+
+
+def quick_parse(argv: list[str], switches: tuple[str, ...], valued: dict,
+                defaults: dict) -> SimpleNamespace | None:
+    """What a parser with these options gives for ``argv`` when every word is an exact
+    switch of ``switches``, or an exact option of ``valued`` (option: its type)
+    followed by a valid value that does not start with ``-``; None for anything
+    else (argparse decides, and words the errors). ``defaults``: every option's
+    default, by its attribute name."""
+    values = dict(defaults)
+    words = iter(argv)
+    for word in words:
+        if word in switches:
+            values[word[1:]] = True
+        elif word in valued:
+            text = next(words, None)
+            if text is None or text.startswith("-"):
+                return None
+            try:
+                values[word[1:]] = valued[word](text)
+            except Exception:  # a bad value: argparse words the error
+                return None
+        else:
+            return None
+    return SimpleNamespace(**values)
+
+
+class ParserOnError:
+    """Stands in for the parser after :func:`quick_parse`: a usage error found later
+    (e.g. -ugrad with -grad) makes the parser, with ``build``, for its usage line."""
+
+    def __init__(self, build):
+        self.build = build
+
+    def error(self, message: str) -> None:
+        self.build().error(message)
+
+
+VEHICLE_SWITCHES = ("-ugrad", "-grad", "-left", "-dubins")
+VEHICLE_DEFAULTS = {"ugrad": False, "grad": False, "left": False, "dubins": False,
+                    "radius": None}
+"""The vehicle flags for :func:`quick_parse` (``-radius`` takes :func:`turning_radius`)."""
 
 
 # ----- vehicle flags ----------------------------------------------------------------

@@ -92,11 +92,10 @@ def _known_planner(name: str) -> str:
     return name
 
 
-_SWITCHES = ("-ugrad", "-grad", "-left", "-dubins", "-smooth", "-stats", "-optimize")
+_SWITCHES = (*cli_common.VEHICLE_SWITCHES, "-smooth", "-stats", "-optimize")
 _VALUED = {"-planner": _known_planner, "-seed": seed, "-time": positive_float,
            "-iterations": positive_int, "-cost": positive_float, "-radius": turning_radius}
-_DEFAULTS = {"ugrad": False, "grad": False, "left": False, "dubins": False, "radius": None,
-             "smooth": False, "stats": False,
+_DEFAULTS = {**cli_common.VEHICLE_DEFAULTS, "smooth": False, "stats": False,
              "optimize": False, "cost": None, "planner": DEFAULT_PLANNER, "seed": None,
              "time": DEFAULT_TIME_LIMIT, "iterations": DEFAULT_ITERATIONS}
 
@@ -104,37 +103,14 @@ _DEFAULTS = {"ugrad": False, "grad": False, "left": False, "dubins": False, "rad
 def quick_parse(argv: list[str]) -> SimpleNamespace | None:
     """What ``build_parser().parse_args(argv)`` gives when every word is an exact
     option name or a valid value of one; None for anything else (argparse decides)."""
-    values = dict(_DEFAULTS)
-    words = iter(argv)
-    for word in words:
-        if word in _SWITCHES:
-            values[word[1:]] = True
-        elif word in _VALUED:
-            text = next(words, None)
-            if text is None or text.startswith("-"):
-                return None
-            try:
-                values[word[1:]] = _VALUED[word](text)
-            except Exception:  # a bad value: argparse words the error
-                return None
-        else:
-            return None
-    return SimpleNamespace(**values)
-
-
-class _ParserOnError:
-    """Stands in for :func:`build_parser` after :func:`quick_parse`: a usage error
-    (e.g. -ugrad with -grad) makes the parser for its usage line."""
-
-    def error(self, message: str) -> None:
-        build_parser().error(message)
+    return cli_common.quick_parse(argv, _SWITCHES, _VALUED, _DEFAULTS)
 
 
 def parse_command_line(argv: list[str] | None):
     """The options and the parser (or its stand-in) for later usage errors."""
     args = quick_parse(sys.argv[1:] if argv is None else argv)
     if args is not None:
-        return args, _ParserOnError()
+        return args, cli_common.ParserOnError(build_parser)
     parser = build_parser()
     return parser.parse_args(argv), parser
 

@@ -22,10 +22,11 @@ from __future__ import annotations
 import marshal
 import os
 import sys
-# importlib.util re-exports these two, but imports contextlib and its dependencies.
-from importlib._bootstrap_external import MAGIC_NUMBER, cache_from_source
-from importlib.machinery import (EXTENSION_SUFFIXES, SOURCE_SUFFIXES, ExtensionFileLoader,
-                                 FileFinder, SourceFileLoader)
+# What importlib.machinery and importlib.util re-export, from the import system's own
+# module (always loaded): importing the importlib package would import warnings too.
+from _frozen_importlib_external import (EXTENSION_SUFFIXES, MAGIC_NUMBER, SOURCE_SUFFIXES,
+                                        ExtensionFileLoader, FileFinder, SourceFileLoader,
+                                        cache_from_source)
 
 import _imp
 

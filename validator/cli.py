@@ -7,9 +7,10 @@ A ``kinoplan 1`` problem (SPEC 5, first word ``kinoplan``) names its own system:
 the vehicle flags are then a usage error, the checks are SPEC 5.5's, and the PDF
 has the family's pages (render_kinodynamic, render_geometric).
 
-argv -> problem (stdin) -> run_planner -> checks -> verdict text or JSON on
-stdout, the picture with render_output (-o's extension picks PDF, HTML view, SVG or
-PNG; a writer is imported only to draw one). Exit status: 0 valid,
+argv -> problem (stdin) -> the planner started, then the checks imported and the
+problem's set-up made while it runs -> checks -> verdict text or JSON on stdout,
+the picture with render_output (-o's extension picks PDF, HTML view, SVG or PNG; a
+writer is imported only to draw one). Exit status: 0 valid,
 1 invalid, 2 usage error, bad problem or a PDF that could not be written, 3 the
 planner could not be started or timed out, 4 no verdict could be given (stdout
 closed or full, or a bug of ours), 130 interrupted (Ctrl-C, one line). Writes to
@@ -18,26 +19,26 @@ stderr never change the status.
 
 from __future__ import annotations
 
-import argparse
 import os
 import signal
 import stat
 import sys
-from typing import Sequence
+from collections.abc import Sequence
 
-from cli_common import (EXIT_USAGE, OneLineErrorParser, add_vehicle_flags, describe_os_error,
-                        is_kinoplan, looks_like_problem_file, parse_any_problem,
-                        positive_float, read_problem_text_from_stdin, reject_vehicle_flags,
-                        reserve_standard_fds, say, vehicle_from_flags, vehicle_options,
-                        write_stdout)
+from cli_common import (EXIT_USAGE, VEHICLE_DEFAULTS, VEHICLE_SWITCHES, ParserOnError,
+                        add_vehicle_flags, describe_os_error, is_kinoplan,
+                        looks_like_problem_file, parse_any_problem, positive_float,
+                        quick_parse, read_problem_text_from_stdin, reject_vehicle_flags,
+                        reserve_standard_fds, say, turning_radius, vehicle_from_flags,
+                        vehicle_options, write_stdout)
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
-from planning_core.setups import grid_setup, kinoplan_setup
 from planning_core.vehicles import Vehicle
-from validator.checks import (CHECKS, INVALID_VERDICT, CheckResult,
-                              ValidationReport, validate_plan)
-from validator.run_planner import DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun, run_planner
+from validator.run_planner import (DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun,
+                                   StartedPlanner, start_planner)
 
+# What the verdict needs beyond reading the problem and starting the planner (the
+# checks, the problem's set-up) is imported while the planner runs: see main().
 EXIT_VALID = 0
 EXIT_INVALID = 1
 EXIT_PLANNER_FAILED = 3
@@ -48,7 +49,9 @@ DEFAULT_PDF = "tree-viz.pdf"
 PROG = "rrt-validator"
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser():
+    """The argparse parser: -h, and every command line :func:`quick_parse` leaves."""
+    from cli_common import OneLineErrorParser
     parser = OneLineErrorParser(
         prog=PROG,
         usage=f"{PROG} [-ugrad | -grad | -dubins [-radius R]] [-left] [-strict] [-noviz] "
@@ -123,6 +126,7 @@ def report_text(report: ValidationReport) -> str:
 
 
 def _check_json(number: int, result: CheckResult | None, applicable: bool) -> dict:
+    from validator.checks import CHECKS
     status = ("not applicable" if not applicable else "not run" if result is None
               else "passed" if result.passed else "failed")
     check = CHECKS[number - 1]
@@ -138,6 +142,7 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
                 kinodynamic: bool | None = None) -> dict:
     """The JSON object; ``vehicle`` is a Vehicle, or a kinoplan system's name with
     ``kinodynamic`` saying whether check 7 applies."""
+    from validator.checks import CHECKS, INVALID_VERDICT
     directed = False
     if isinstance(vehicle, Vehicle):
         kinodynamic = vehicle.is_spaceship
@@ -241,16 +246,28 @@ def _separator_hint(argv: list[str], extras: list[str]) -> tuple[str, ...]:
     return (f"the planner's command goes after --: {suggestion} < problem.sw",)
 
 
+_SWITCHES = (*VEHICLE_SWITCHES, "-strict", "-noviz", "-json")
+_VALUED = {"-radius": turning_radius, "-o": str, "-timeout": positive_float}
+_DEFAULTS = {**VEHICLE_DEFAULTS, "strict": False, "noviz": False, "json": False,
+             "o": DEFAULT_PDF, "timeout": DEFAULT_TIMEOUT}
+
+
 def _parse_command_line(argv: list[str]):
-    """Our flags, the vehicle, the planner's command and the parser; a usage error
-    exits 2."""
+    """Our flags, the vehicle, the planner's command and the parser (or its stand-in:
+    the usual command lines are read without argparse, a start-up saving); a usage
+    error exits 2."""
     has_separator = "--" in argv
     split = argv.index("--") if has_separator else len(argv)
     own, command = argv[:split], argv[split + 1:]
-    parser = build_parser()
-    args, extras = parser.parse_known_args(own)  # -h prints the help and exits 0
-    if extras:
-        parser.reject_extras(extras, () if has_separator else _separator_hint(argv, extras))
+    args = quick_parse(own, _SWITCHES, _VALUED, _DEFAULTS) if has_separator else None
+    if args is None:
+        parser = build_parser()
+        args, extras = parser.parse_known_args(own)  # -h prints the help and exits 0
+        if extras:
+            parser.reject_extras(extras,
+                                 () if has_separator else _separator_hint(argv, extras))
+    else:
+        parser = ParserOnError(build_parser)
     vehicle = vehicle_from_flags(parser, args)
     if not command:
         parser.error("no planner: put the planner's command after --, e.g. "
@@ -280,6 +297,7 @@ def _check_picture_path(parser, path: str) -> None:
 def _validate(run: PlannerRun, setup, strict: bool
               ) -> tuple[ValidationReport | None, int, str]:
     """The report (None when the planner did not run to the end), status, verdict."""
+    from validator.checks import INVALID_VERDICT, validate_plan
     if not run.ran_to_completion:
         return None, EXIT_PLANNER_FAILED, INVALID_VERDICT
     report = validate_plan(setup, decode_output(run.output), strict=strict,
@@ -300,10 +318,9 @@ def _summary(run: PlannerRun, report: ValidationReport | None, pdf: str | None) 
     return f"{PROG}: " + "; ".join(summary)
 
 
-def _read_problem(parser, args, vehicle: Vehicle):
-    """``(problem, its text for the planner, Setup)``, or None after one
-    line on stderr (a bad problem: exit 2); vehicle flags with a kinoplan problem
-    are a usage error."""
+def _read_problem(parser, args):
+    """``(problem, its text for the planner)``, or None after one line on stderr (a
+    bad problem: exit 2); vehicle flags with a kinoplan problem are a usage error."""
     text = read_problem_text_from_stdin(PROG)
     if text is None:
         return None
@@ -315,23 +332,62 @@ def _read_problem(parser, args, vehicle: Vehicle):
     if is_kinoplan(problem):
         reject_vehicle_flags(parser, args)
         # The reader accepts ASCII only: the text goes to the planner as it came.
-        return problem, text.encode("ascii"), kinoplan_setup(problem)
-    return (problem, format_problem(problem).encode("ascii"),
-            grid_setup(problem, vehicle, vehicle_options(args)))
+        return problem, text.encode("ascii")
+    return problem, format_problem(problem).encode("ascii")
+
+
+def _setup(problem, vehicle: Vehicle, args):
+    """The problem's Setup (what the checks take), with the checks imported: the
+    validator's own heavy part, done while the planner runs."""
+    import validator.checks  # noqa: F401  (imported now, used after the planner ends)
+    from planning_core.setups import grid_setup, kinoplan_setup
+    if is_kinoplan(problem):
+        return kinoplan_setup(problem)
+    return grid_setup(problem, vehicle, vehicle_options(args))
+
+
+def _run(command: list[str], problem_bytes: bytes, timeout: float, prepare):
+    """The planner's run and ``prepare()``'s value: the planner is started first,
+    ``prepare`` runs while it does (the timeout counts both), and on any exception
+    the planner and everything it started are killed."""
+    started = start_planner(command, problem_bytes, timeout=timeout,
+                            output_cap=DEFAULT_OUTPUT_CAP)
+    if not isinstance(started, StartedPlanner):  # it could not be started
+        return started, prepare()
+    try:
+        prepared = _ctrl_c_after(prepare)
+    except BaseException:
+        started.stop()
+        raise
+    return started.finish(), prepared
+
+
+def _ctrl_c_after(work):
+    """``work()``, a Ctrl-C meanwhile taken when it returns: CPython remembers a
+    KeyboardInterrupt raised inside ``exec`` of a string (how dataclasses and
+    namedtuple make their methods, at import) and ends the process by SIGINT at exit,
+    not with our status 130."""
+    if not hasattr(signal, "pthread_sigmask"):
+        return work()
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        return work()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     args, vehicle, command, parser = _parse_command_line(argv)
-    found = _read_problem(parser, args, vehicle)
+    found = _read_problem(parser, args)
     if found is None:
         return EXIT_USAGE
-    problem, problem_bytes, setup = found
+    problem, problem_bytes = found
     kinoplan = is_kinoplan(problem)
     label = _stdin_label()
 
-    run = run_planner(command, problem_bytes, timeout=args.timeout,
-                      output_cap=DEFAULT_OUTPUT_CAP)
+    run, setup = _run(command, problem_bytes, args.timeout,
+                      lambda: _setup(problem, vehicle, args))
     messages = solver_messages(run)
     report, status, verdict = _validate(run, setup, args.strict)
 
@@ -365,7 +421,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _terminate(signum, frame):
-    # Unwinds through run_planner, which kills the planner's process group.
+    # Unwinds through _run, which kills the planner's process group.
     raise SystemExit(128 + signum)
 
 
@@ -381,7 +437,7 @@ def entry_point() -> None:
             pass
     try:
         status = main()
-    except KeyboardInterrupt:  # Ctrl-C: run_planner has killed the planner's group
+    except KeyboardInterrupt:  # Ctrl-C: _run has killed the planner's group
         say(f"{PROG}: interrupted")
         status = EXIT_INTERRUPTED
     except SystemExit as done:  # -h, a usage error, or a signal (_terminate)

@@ -29,8 +29,7 @@ import signal
 import subprocess
 import sys
 import time
-from dataclasses import dataclass, replace
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 DEFAULT_TIMEOUT = 60.0
 DEFAULT_OUTPUT_CAP = 64 * 1024 * 1024
@@ -49,24 +48,32 @@ _PR_SET_CHILD_SUBREAPER = 36
 _PR_GET_CHILD_SUBREAPER = 37
 
 
-@dataclass(frozen=True)
 class PlannerRun:
-    """What happened to the planner."""
+    """What happened to the planner. (A plain class, not a dataclass: the validator
+    imports this module before it starts the planner, and ``dataclasses`` with
+    ``inspect`` would cost that wait about 10 ms.)"""
 
-    command: tuple[str, ...]
-    output: bytes | bytearray   # its stdout, at most ``output_cap`` bytes
-    started: bool               # False: it could not be started (see ``start_error``)
-    start_error: str = ""
-    exit_code: int | None = None  # its own exit status, when it exited by itself
-    signal: int | None = None     # the signal that ended it, when not ours
-    timed_out: bool = False
-    output_cap_exceeded: bool = False
-    output_cap: int = DEFAULT_OUTPUT_CAP
-    timeout: float = DEFAULT_TIMEOUT
-    wall_time: float = 0.0      # seconds from start to its exit (or to our kill)
-    stderr_bytes: int = 0       # what it wrote on stderr; the first ``stderr_cap`` were passed on
-    stderr_cap: int = DEFAULT_STDERR_CAP
-    stderr_tail: bytes = b""    # the last STDERR_TAIL bytes it wrote there (for the picture)
+    def __init__(self, command: tuple[str, ...], output: bytes | bytearray, started: bool,
+                 start_error: str = "", exit_code: int | None = None,
+                 signal: int | None = None, timed_out: bool = False,
+                 output_cap_exceeded: bool = False, output_cap: int = DEFAULT_OUTPUT_CAP,
+                 timeout: float = DEFAULT_TIMEOUT, wall_time: float = 0.0,
+                 stderr_bytes: int = 0, stderr_cap: int = DEFAULT_STDERR_CAP,
+                 stderr_tail: bytes = b"") -> None:
+        self.command = command
+        self.output = output            # its stdout, at most ``output_cap`` bytes
+        self.started = started          # False: it could not be started (``start_error``)
+        self.start_error = start_error
+        self.exit_code = exit_code      # its own exit status, when it exited by itself
+        self.signal = signal            # the signal that ended it, when not ours
+        self.timed_out = timed_out
+        self.output_cap_exceeded = output_cap_exceeded
+        self.output_cap = output_cap
+        self.timeout = timeout
+        self.wall_time = wall_time      # seconds from start to its exit (or to our kill)
+        self.stderr_bytes = stderr_bytes  # what it wrote on stderr; ``stderr_cap`` passed on
+        self.stderr_cap = stderr_cap
+        self.stderr_tail = stderr_tail  # its last STDERR_TAIL bytes there (for the picture)
 
     @property
     def ran_to_completion(self) -> bool:
@@ -96,9 +103,19 @@ def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFA
     seconds (plus the time the kernel takes to kill what it started, and at most
     a second for a slow reader of our stderr).
     """
+    started = start_planner(command, stdin_data, timeout, output_cap, stderr_cap, stderr_fd)
+    return started.finish() if isinstance(started, StartedPlanner) else started
+
+
+def start_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFAULT_TIMEOUT,
+                  output_cap: int = DEFAULT_OUTPUT_CAP, stderr_cap: int = DEFAULT_STDERR_CAP,
+                  stderr_fd: int = 2) -> StartedPlanner | PlannerRun:
+    """:func:`run_planner`'s first half: the planner started, contained, and given
+    as much of ``stdin_data`` as its pipe takes at once; the caller may work
+    meanwhile (the timeout counts from here) and then calls
+    :meth:`StartedPlanner.finish`, or :meth:`StartedPlanner.stop` if it fails
+    first. A planner that cannot be started: its :class:`PlannerRun` at once."""
     command = tuple(command)
-    not_started = PlannerRun(command, b"", False, output_cap=output_cap, timeout=timeout,
-                             stderr_cap=stderr_cap)
     if sys.stderr is not None:
         sys.stderr.flush()  # what we wrote before comes before what the planner writes
     stderr = _StderrSink(stderr_cap, stderr_fd)  # before Popen: its pipes may reuse a closed fd 2
@@ -110,28 +127,68 @@ def run_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DEFA
                                    preexec_fn=containment.preexec())
     except (OSError, ValueError, subprocess.SubprocessError) as error:
         containment.close()
-        return replace(not_started, start_error=str(error))
-    containment.started(process.pid)
-    pump = _Pump(process, stdin_data, output_cap, stderr)
+        return PlannerRun(command, b"", False, start_error=str(error), output_cap=output_cap,
+                          timeout=timeout, stderr_cap=stderr_cap)
+    started = StartedPlanner(command, process, containment, began, timeout, stderr_cap)
     try:
-        exit_time = _pump_until_done(process, pump, began + timeout)
-    finally:
-        # Also on Ctrl-C or SIGTERM: in its own session, the planner would not get them.
-        _kill_group(process.pid)  # start_new_session: the planner leads its own group
-        process.wait()
-        containment.sweep()  # what left the group
-        containment.close()
-        pump.close()
-    exited_by_itself = exit_time is not None
-    wall = (exit_time if exited_by_itself else time.monotonic()) - began
-    code = process.returncode if exited_by_itself else None
-    return PlannerRun(command, pump.output, True,  # no copy: it may be 64 MiB
-                      exit_code=code if code is not None and code >= 0 else None,
-                      signal=-code if code is not None and code < 0 else None,
-                      timed_out=not exited_by_itself and not pump.cap_exceeded,
-                      output_cap_exceeded=pump.cap_exceeded, output_cap=output_cap,
-                      timeout=timeout, wall_time=wall, stderr_bytes=pump.stderr.total,
-                      stderr_cap=stderr_cap, stderr_tail=bytes(pump.stderr.tail))
+        containment.started(process.pid)
+        started.pump = _Pump(process, stdin_data, output_cap, stderr)
+        started.pump.write_now()
+    except BaseException:
+        started.stop()
+        raise
+    return started
+
+
+class StartedPlanner:
+    """A planner :func:`start_planner` started: :meth:`finish` drives its pipes to
+    the end and gives the :class:`PlannerRun`; :meth:`stop` kills it and everything
+    it started (what ``finish`` does at its end too)."""
+
+    def __init__(self, command: tuple[str, ...], process: subprocess.Popen,
+                 containment: _Containment, began: float, timeout: float, stderr_cap: int):
+        self.command, self.process, self.containment = command, process, containment
+        self.began, self.timeout, self.stderr_cap = began, timeout, stderr_cap
+        self.pump: _Pump | None = None
+        self.stopped = False
+
+    def finish(self) -> PlannerRun:
+        process, pump = self.process, self.pump
+        assert pump is not None and not self.stopped
+        try:
+            exit_time = _pump_until_done(process, pump, self.began + self.timeout)
+        finally:
+            self.stop()
+        exited_by_itself = exit_time is not None
+        wall = (exit_time if exited_by_itself else time.monotonic()) - self.began
+        code = process.returncode if exited_by_itself else None
+        return PlannerRun(self.command, pump.output, True,  # no copy: it may be 64 MiB
+                          exit_code=code if code is not None and code >= 0 else None,
+                          signal=-code if code is not None and code < 0 else None,
+                          timed_out=not exited_by_itself and not pump.cap_exceeded,
+                          output_cap_exceeded=pump.cap_exceeded, output_cap=pump.output_cap,
+                          timeout=self.timeout, wall_time=wall,
+                          stderr_bytes=pump.stderr.total, stderr_cap=self.stderr_cap,
+                          stderr_tail=bytes(pump.stderr.tail))
+
+    def stop(self) -> None:
+        """Kill the planner's group and what left it, reap the planner, close the
+        pipes (once; also on Ctrl-C or SIGTERM: in its own session, the planner
+        would not get them)."""
+        if self.stopped:
+            return
+        self.stopped = True
+        try:
+            _kill_group(self.process.pid)  # start_new_session: the planner leads its group
+            self.process.wait()
+            self.containment.sweep()  # what left the group
+        finally:
+            self.containment.close()
+            if self.pump is not None:
+                self.pump.close()
+            else:
+                for pipe in (self.process.stdin, self.process.stdout, self.process.stderr):
+                    pipe.close()
 
 
 def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
@@ -216,6 +273,12 @@ class _Pump:
                 self._read_stderr()
             else:
                 self.stderr.write_some()
+
+    def write_now(self) -> None:
+        """Write what the stdin pipe takes without waiting (a problem of less than
+        the pipe's 64 KiB: all of it, closing stdin)."""
+        if self.stdin_open:
+            self._write()
 
     def _write(self) -> None:
         try:
@@ -434,7 +497,13 @@ def _read_stat(pid: int) -> tuple[int, int, bytes] | None:
 
 
 def _proc_table() -> dict[int, tuple[int, int, bytes]] | None:
-    """Every process's ``_read_stat``, by pid; None without /proc."""
+    """``_read_stat`` by pid of every process below this one, found through the
+    kernel's lists of each process's children (a few files, where reading every
+    process's would take milliseconds); of every process where the kernel keeps no
+    such lists; None without /proc."""
+    below = _processes_below(os.getpid())
+    if below is not None:
+        return below
     try:
         names = os.listdir("/proc")
     except OSError:
@@ -446,6 +515,39 @@ def _proc_table() -> dict[int, tuple[int, int, bytes]] | None:
             if stat is not None:
                 table[int(name)] = stat
     return table
+
+
+def _processes_below(root: int) -> dict[int, tuple[int, int, bytes]] | None:
+    """``_read_stat`` by pid of every descendant of ``root``, through
+    ``/proc/PID/task/TID/children``; None where the kernel has no such files."""
+    if not os.path.exists(f"/proc/{root}/task/{root}/children"):
+        return None
+    table: dict[int, tuple[int, int, bytes]] = {}
+    stack = [root]
+    while stack:
+        for pid in _children(stack.pop()):
+            if pid not in table:
+                stat = _read_stat(pid)
+                if stat is not None:
+                    table[pid] = stat
+                    stack.append(pid)
+    return table
+
+
+def _children(pid: int) -> list[int]:
+    """The children of every thread of ``pid`` (none if it is gone)."""
+    try:
+        threads = os.listdir(f"/proc/{pid}/task")
+    except OSError:
+        return []
+    children = []
+    for thread in threads:
+        try:
+            with open(f"/proc/{pid}/task/{thread}/children", "rb") as listed:
+                children += [int(child) for child in listed.read().split()]
+        except (OSError, ValueError):
+            continue  # the thread (or the process) has ended
+    return children
 
 
 def _descendants(table: dict[int, tuple[int, int, bytes]], root: int,

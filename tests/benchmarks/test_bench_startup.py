@@ -26,3 +26,14 @@ def test_a_failing_command_is_one_line_and_status_1(capsys):
                                  "--ours", "./run.sh -bogus"])
     err = capsys.readouterr().err
     assert status == 1 and err.count("\n") == 1 and "exit status 2" in err
+
+
+def test_the_page_holds_the_command_that_made_it_and_the_tables(tmp_path, capsys):
+    page = tmp_path / "startup.md"
+    argv = ["--pairs", "1", "--problems", str(SIMPLE), "--ours", "./run.sh -seed 1",
+            "--theirs", "./run.sh -seed 2", "--page", str(page)]
+    assert bench_startup.main(argv) == 0
+    text = page.read_text()
+    printed = capsys.readouterr().out
+    assert "--theirs './run.sh -seed 2'" in text.splitlines()[2]
+    assert printed.strip() in text and text.count("\nsimple-0 ") == 1
