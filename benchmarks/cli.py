@@ -50,6 +50,7 @@ from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import CsvAppender, read_csv, write_csv
+from benchmarks.arm2_shortest_path import arm2_shortest_lengths
 from benchmarks.shortest_path import shortest_lengths
 from cli_common import EXIT_USAGE, OneLineErrorParser, add_switches
 from planning_core.vehicles import Vehicle
@@ -195,13 +196,14 @@ def _markdown(rows, meta: dict, shortest) -> str:
 def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:
     """runs.csv, report.md, report.html, meta.json, the OMPL logs and (``plots``) the
     plots, in plots.pdf and in report.html, from ``rows``; with ``yardstick`` the point
-    vehicle's shortest paths (shortest.csv). A family preset's report is the family's
-    (no yardstick)."""
+    vehicle's and arm2's shortest paths (shortest.csv). A family preset's report is the
+    family's (no yardstick)."""
     out.mkdir(parents=True, exist_ok=True)
     write_csv(rows, out / "runs.csv")
     shortest = None
     if yardstick and meta.get("preset", "") not in family.FAMILY_PRESETS:  # s at 100x100
         shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
+        shortest.update(arm2_shortest_lengths(r.problem for r in rows if r.vehicle == "arm2"))
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(
             f"{problem},{length!r}\n" for problem, length in sorted(shortest.items())))
     report = out / "report.md"

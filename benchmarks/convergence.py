@@ -22,6 +22,9 @@ from benchmarks.rows import RunRow
 PROGRESS_INTERVAL = 0.05
 """Seconds between two samples of a run's best cost (OMPL's Benchmark's default
 ``timeBetweenUpdates``)."""
+SHORTEST_SYSTEMS = ("point", "arm2")
+"""The systems whose shortest paths the benchmarks compute: the point vehicle's
+(``benchmarks/shortest_path.py``) and arm2's (``benchmarks/arm2_shortest_path.py``)."""
 Z_95 = 1.959963984540054
 """The standard normal's 97.5th percentile: a two-sided 95% interval."""
 
@@ -109,8 +112,8 @@ def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],
     """Per problem and planner: runs solved, median time to the first solution, the
     median cost at each checkpoint (with its 95% interval), ours over OMPL's (Python
     bindings; and, when the rows have OMPL in C++, over C++'s); with ``shortest`` (the
-    point vehicle's shortest path per problem), the median cost at the last checkpoint
-    over it."""
+    shortest path per problem of the point vehicle and arm2: the systems
+    :data:`SHORTEST_SYSTEMS` names), the median cost at the last checkpoint over it."""
     times = [t for t in checkpoints if any(t <= r.time_limit for r in rows)]
     shortest = shortest or {}
     peers = [(OMPL_PREFIX, "OMPL")]
@@ -136,7 +139,8 @@ def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],
                              by_key.get((vehicle, problem, counterpart(planner, prefix) or ""),
                                         []))),
                          *([_ratio(_over(medians[-1][0], shortest.get(problem, math.nan)))
-                            if vehicle == "point" else "–"] if shortest and times else [])))
+                            if vehicle in SHORTEST_SYSTEMS else "–"] if shortest and times
+                           else [])))
     return markdown_table(header, body, "lll" + "r" * (len(header) - 3))
 
 
@@ -173,7 +177,7 @@ def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
                     checkpoints: Sequence[float],
                     shortest: Mapping[str, float] | None = None) -> str:
     """The ``optimal*`` presets' report: the run's facts, then the convergence table
-    (with ``shortest``, the point vehicle's median cost over its shortest path)."""
+    (with ``shortest``, the median cost over the shortest path, point vehicle and arm2)."""
     out = [f"# Benchmark report: {meta.get('preset', 'optimal')} run, {meta.get('date', '')}",
            ""]
     out += [f"- {key}: {value}" for key, value in meta.items() if key not in ("preset", "date")]
@@ -185,10 +189,12 @@ def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
             "\"vs OMPL\" = our median over OMPL's same planner's through its Python bindings, "
             "\"vs OMPL C++\" over OMPL's in C++ (below 1 is better). "
             "First solution: median over all runs, an unsolved run counting its limit. "
-            "\"vs shortest\" (point vehicle) = the median cost at the last checkpoint over "
-            "the problem's shortest path to the goal point (benchmarks/shortest_path.py); "
-            "a path may end anywhere within the goal's 0.1 radius, so down to about "
-            "(shortest - 0.1) / shortest is possible.",
+            "\"vs shortest\" (point vehicle, arm2) = the median cost at the last checkpoint "
+            "over the problem's shortest path to the goal point or configuration "
+            "(benchmarks/shortest_path.py: exact; benchmarks/arm2_shortest_path.py: a valid "
+            "path refined until a round shortens it by under 0.1%, an upper bound); a path "
+            "may end anywhere within the goal's tolerance (the point's 0.1), so a ratio a "
+            "little under 1 is possible.",
             "", "## Cost against time", ""]
     out += convergence_table(rows, checkpoints, shortest) + [""]
     return "\n".join(out)

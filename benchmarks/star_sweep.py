@@ -7,8 +7,9 @@ Each run is ``./run.sh -planner P -seed S -stats`` (with ``-optimize -time B`` f
 budget B > 0; 0 is the first solution, ``-time 30``), its answer checked by the
 validator's own checks and its cost read from ``-stats``. One line per problem,
 planner and budget: solved and valid out of the seeds, median first-solution time
-and median (and worst) cost, and for a point problem the median cost over the exact
-shortest path (``benchmarks/shortest_path.py``).
+and median (and worst) cost, and for a point or arm2 problem the median cost over the
+shortest path (``benchmarks/shortest_path.py``, exact; ``benchmarks/arm2_shortest_path.py``,
+a valid path refined until it stops falling by 0.1%).
 """
 
 from __future__ import annotations
@@ -29,9 +30,15 @@ _STATS = re.compile(r"cost=(\S+) first_solution_seconds=(\S+)")
 
 
 def _setup(text: str):
+    """The problem's setup for the validator, and its shortest path's length where the
+    benchmarks compute one (point vehicle, arm2), else None."""
     problem = parse_any_problem(text)
     if hasattr(problem, "system"):
-        return kinoplan_setup(problem), None
+        if problem.system.name != "arm2":
+            return kinoplan_setup(problem), None
+        from benchmarks.arm2_shortest_path import arm2_shortest_path
+        found = arm2_shortest_path(problem)
+        return kinoplan_setup(problem), found.length if found else None
     from benchmarks.shortest_path import shortest_path
     found = shortest_path(problem)
     return grid_setup(problem, "point"), found.length if found else None

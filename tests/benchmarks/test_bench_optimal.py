@@ -110,6 +110,14 @@ def test_the_table_gives_medians_at_each_checkpoint_and_ratios_to_ompl():
     table = convergence.convergence_table(ours + theirs, (1.0, 10.0), {"p": 1.6})
     assert cells(table, "rrtstar (ours)")[-1] == "1.25×"
     assert cells(table, "OMPL RRT*")[-1] == "3.12×"
+    # arm2 has a yardstick too; the ships, whose costs are not a point's, have none.
+    arm = [optimizing("rrtstar", "arm2-pair1", s, "0.5:6 2:5.5", vehicle="arm2")
+           for s in (1, 2)]
+    ship = [optimizing("sst", "p", 1, "0.5:3", vehicle="spaceship")]
+    table = convergence.convergence_table(arm + ship, (1.0, 10.0), {"p": 1.6,
+                                                                   "arm2-pair1": 5.0})
+    assert next(c for c in table if "arm2-pair1" in c).split("|")[-2].strip() == "1.10×"
+    assert next(c for c in table if "spaceship" in c).split("|")[-2].strip() == "–"
 
 
 def test_the_table_compares_with_ompl_in_cpp_when_it_ran():

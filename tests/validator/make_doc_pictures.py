@@ -49,6 +49,15 @@ PICTURES = [
      0),
     ("img/family-rigid2-slot-smooth.png", "family/variants/rigid2-slot.kp",
      ["-planner", "rrtconnect", "-smooth"], [], 0),
+    # docs/optimal-planning.md: RRT's first answer against RRT*'s best in 1 s, same seed
+    ("img/course-space-1-rrt.png", "course/space-1.sw", ["-planner", "rrt"], [], 0),
+    ("img/course-space-1-rrtstar.png", "course/space-1.sw",
+     ["-planner", "rrtstar", "-optimize", "-time", "1"], [], 0),
+    ("img/course-space-1-dubins-rrt.png", "course/space-1.sw",
+     ["-dubins", "-radius", "0.5", "-planner", "rrt"], ["-dubins", "-radius", "0.5"], 0),
+    ("img/course-space-1-dubins-rrtstar.png", "course/space-1.sw",
+     ["-dubins", "-radius", "0.5", "-planner", "rrtstar", "-optimize", "-time", "1"],
+     ["-dubins", "-radius", "0.5"], 0),
 ]
 SEED = ["-seed", "1"]
 
