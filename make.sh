@@ -4,6 +4,7 @@
 #                        benchmark tools, and OMPL's Python bindings where PyPI has a wheel
 #                        (OMPL is optional: the benchmarks and their tests skip it with a note);
 #                        as root with apt-get, Debian's chromium, poppler-utils and qpdf (tests)
+#                        and libompl-dev (the benchmarks' OMPL C++ peers)
 #   ./make.sh validator  the project and reportlab only: what the validator's PDF needs
 # Both write the bytecode the launchers read into .build/pycache (rrt_startup/bytecode.py).
 # "all" also compiles the hot modules with mypyc into .build/compiled where a C compiler is
@@ -18,7 +19,7 @@ cd "$(dirname "$0")"
 case ${1:-all} in
     all) target=all ;;
     validator) target=validator ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "make.sh: unknown target '$1' (use: ./make.sh [all | validator])" >&2; exit 2 ;;
 esac
 PYTHON=${PYTHON:-python3}
@@ -149,9 +150,22 @@ sys.exit(main(sys.argv[2]))' "$PWD" "$folder" >>"$LOG" 2>&1; then
     fi
 }
 
+# Debian's packages "$@" (only where apt-get is and we are root; else one line), for
+# $purpose; a failure is one line too: what needs them skips.
+apt_install() {
+    if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null 2>&1; then
+        step "note: $* not installed (apt-get as root installs them); $purpose will skip"
+        return 0
+    fi
+    step "installing $* (Debian's packages: $purpose)"
+    if ! { apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y \
+            --no-install-recommends "$@"; } >>"$LOG" 2>&1; then
+        step "note: apt-get could not install $* (see $LOG); $purpose will skip"
+    fi
+}
+
 # Headless Chromium (the browser view's tests) and poppler-utils and qpdf (the strict PDF
-# readers of the PDF's tests), from Debian's packages: only what is missing, only where
-# apt-get is and we are root; elsewhere one line says those tests will skip.
+# readers of the PDF's tests), only what is missing.
 install_test_tools() {
     local missing=()
     command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 \
@@ -159,15 +173,18 @@ install_test_tools() {
     command -v pdftoppm >/dev/null 2>&1 || missing+=(poppler-utils)
     command -v qpdf >/dev/null 2>&1 || missing+=(qpdf)
     [ ${#missing[@]} -eq 0 ] && return 0
-    if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null 2>&1; then
-        step "note: ${missing[*]} not installed (apt-get as root installs them); the browser view's and strict PDF tests will skip"
-        return 0
-    fi
-    step "installing ${missing[*]} (Debian's packages: the view's and the PDF's tests)"
-    if ! { apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y \
-            --no-install-recommends "${missing[@]}"; } >>"$LOG" 2>&1; then
-        step "note: apt-get could not install ${missing[*]} (see $LOG); those tests will skip"
-    fi
+    purpose="the browser view's and strict PDF tests" apt_install "${missing[@]}"
+}
+
+# OMPL's C++ library and headers, with g++ and pkg-config to build against them: the
+# benchmarks' C++ peers (benchmarks/ompl_cpp/), only what is missing.
+install_ompl_cpp() {
+    local missing=()
+    command -v g++ >/dev/null 2>&1 || missing+=(g++)
+    command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
+    pkg-config --exists ompl 2>/dev/null || missing+=(libompl-dev)
+    [ ${#missing[@]} -eq 0 ] && return 0
+    purpose="the OMPL C++ comparisons and their tests" apt_install "${missing[@]}"
 }
 
 # .venv/.installed: everything; .venv/.installed-validator: the project and reportlab.
@@ -178,5 +195,6 @@ if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
 fi
 [ "$target" = all ] && compile_hot_modules
 [ "$target" = all ] && install_test_tools
+[ "$target" = all ] && install_ompl_cpp
 compile_bytecode
 exit 0

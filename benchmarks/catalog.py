@@ -17,6 +17,8 @@ from planning_core.vehicles import Vehicle
 ROOT = Path(__file__).resolve().parent.parent
 VEHICLE_FLAGS = {vehicle: vehicle.flags for vehicle in Vehicle}
 OMPL_PREFIX = "ompl-"
+OMPL_CPP_PREFIX = "ompl-cpp-"
+"""OMPL in C++ (benchmarks/ompl_cpp_planner.py): ``ompl-cpp-rrtstar``, ..."""
 
 
 @dataclass(frozen=True)
@@ -24,7 +26,7 @@ class PlannerChoice:
     """One planner as the harness runs it."""
 
     id: str                   # "rrt" (ours), "ompl-rrt", "blossom-b1", ...
-    implementation: str       # "ours" | "ompl"
+    implementation: str       # "ours" | "ompl" (Python bindings) | "ompl-cpp" (C++)
     cli_name: str             # the value of -planner
     vehicles: frozenset
     systems: frozenset = frozenset()
@@ -40,6 +42,8 @@ class PlannerChoice:
         """The planner's command line; ``vehicle`` None for a kinoplan problem."""
         if self.implementation == "ompl":
             head = ["benchmarks.ompl_planner"]
+        elif self.implementation == "ompl-cpp":
+            head = ["benchmarks.ompl_cpp_planner"]
         else:
             head = ["benchmarks.planner_params", *self.params] if self.params else ["rrt_cli"]
         flags = VEHICLE_FLAGS[vehicle] if vehicle is not None else ()
@@ -59,12 +63,16 @@ def label(planner_id: str, vehicle: str) -> str:
     """A planner's name in tables, plots and OMPL logs."""
     if not planner_id.startswith(OMPL_PREFIX):
         return f"{planner_id} (ours)"
-    name = planner_id[len(OMPL_PREFIX):]
+    cpp = planner_id.startswith(OMPL_CPP_PREFIX)
+    name = planner_id[len(OMPL_CPP_PREFIX if cpp else OMPL_PREFIX):]
     kind = ("geometric" if vehicle in (Vehicle.POINT.value, *GEOMETRIC_SYSTEMS)
             else "control")
-    return {"rrt": f"OMPL {kind} RRT", "rrtconnect": "OMPL RRTConnect",
-            "kpiece1": "OMPL control KPIECE1", "prm": "OMPL PRM", "rrtstar": "OMPL RRT*",
-            "informed": "OMPL Informed RRT*", "sst": "OMPL SST"}.get(name, planner_id)
+    named = {"rrt": f"OMPL {kind} RRT", "rrtconnect": "OMPL RRTConnect",
+             "kpiece1": "OMPL control KPIECE1", "prm": "OMPL PRM", "rrtstar": "OMPL RRT*",
+             "informed": "OMPL Informed RRT*", "sst": "OMPL SST"}.get(name)
+    if named is None:
+        return planner_id
+    return named.replace("OMPL", "OMPL C++", 1) if cpp else named
 
 
 def ompl_installed() -> bool:

@@ -14,7 +14,7 @@ import math
 import statistics
 from typing import Mapping, Sequence
 
-from benchmarks.catalog import OMPL_PREFIX, label
+from benchmarks.catalog import OMPL_CPP_PREFIX, OMPL_PREFIX, label
 from benchmarks.harness import parse_progress
 from benchmarks.report import _fmt, _ratio, group, markdown_table, planner_order, problem_order
 from benchmarks.rows import RunRow
@@ -90,9 +90,10 @@ def median_interval(values: Sequence[float], z: float = Z_95) -> tuple[float, fl
     return statistics.median(data), data[low - 1], data[high - 1]
 
 
-def counterpart(planner: str) -> str | None:
-    """OMPL's planner our optimizing planner is compared with (``ompl-`` + its id)."""
-    return None if planner.startswith(OMPL_PREFIX) else OMPL_PREFIX + planner
+def counterpart(planner: str, prefix: str = OMPL_PREFIX) -> str | None:
+    """OMPL's planner our optimizing planner is compared with (``prefix`` + its id:
+    ``ompl-`` the Python bindings' peer, ``ompl-cpp-`` the C++ one)."""
+    return None if planner.startswith(OMPL_PREFIX) else prefix + planner
 
 
 def first_solution_median(runs: Sequence[RunRow]) -> float:
@@ -106,34 +107,48 @@ def first_solution_median(runs: Sequence[RunRow]) -> float:
 def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],
                       shortest: Mapping[str, float] | None = None) -> list[str]:
     """Per problem and planner: runs solved, median time to the first solution, the
-    median cost at each checkpoint (with its 95% interval) and ours over OMPL's; with
-    ``shortest`` (the point vehicle's shortest path per problem), the median cost at
-    the last checkpoint over it."""
+    median cost at each checkpoint (with its 95% interval), ours over OMPL's (Python
+    bindings; and, when the rows have OMPL in C++, over C++'s); with ``shortest`` (the
+    point vehicle's shortest path per problem), the median cost at the last checkpoint
+    over it."""
     times = [t for t in checkpoints if any(t <= r.time_limit for r in rows)]
     shortest = shortest or {}
+    peers = [(OMPL_PREFIX, "OMPL")]
+    if any(r.planner.startswith(OMPL_CPP_PREFIX) for r in rows):
+        peers.append((OMPL_CPP_PREFIX, "OMPL C++"))
     header = ["System", "Problem", "Planner", "Solved", "First solution (s)",
               *(f"Cost at {t:g} s" for t in times),
-              *(f"vs OMPL at {t:g} s" for t in times), "First solution vs OMPL",
+              *(column for _, name in peers for column in
+                (*(f"vs {name} at {t:g} s" for t in times), f"First solution vs {name}")),
               *([f"vs shortest at {times[-1]:g} s"] if shortest and times else [])]
     by_key = group(rows, "vehicle", "problem", "planner")
     body = []
     for vehicle, problem in _problems(rows):
         for planner in planner_order(p for (v, q, p) in by_key if (v, q) == (vehicle, problem)):
             runs = by_key[(vehicle, problem, planner)]
-            theirs = by_key.get((vehicle, problem, counterpart(planner) or ""), [])
             medians = [median_interval([cost_at(r, t) for r in runs]) for t in times]
             body.append((vehicle, problem, label(planner, vehicle),
                          f"{sum(r.solved for r in runs)}/{len(runs)}",
                          _fmt(first_solution_median(runs)),
                          *(_with_interval(m) for m in medians),
-                         *(_ratio(_over(m[0], median_interval(
-                             [cost_at(r, t) for r in theirs])[0]) if theirs else math.nan)
-                           for m, t in zip(medians, times)),
-                         _ratio(_over(first_solution_median(runs),
-                                      first_solution_median(theirs)) if theirs else math.nan),
+                         *(cell for prefix, _ in peers for cell in _against(
+                             runs, medians, times,
+                             by_key.get((vehicle, problem, counterpart(planner, prefix) or ""),
+                                        []))),
                          *([_ratio(_over(medians[-1][0], shortest.get(problem, math.nan)))
                             if vehicle == "point" else "–"] if shortest and times else [])))
     return markdown_table(header, body, "lll" + "r" * (len(header) - 3))
+
+
+def _against(runs: Sequence[RunRow], medians, times: Sequence[float],
+             theirs: Sequence[RunRow]) -> list[str]:
+    """Our median cost at each checkpoint over theirs, and our median first solution
+    time over theirs ("–" without their runs)."""
+    if not theirs:
+        return [_ratio(math.nan)] * (len(times) + 1)
+    return [*(_ratio(_over(m[0], median_interval([cost_at(r, t) for r in theirs])[0]))
+              for m, t in zip(medians, times)),
+            _ratio(_over(first_solution_median(runs), first_solution_median(theirs)))]
 
 
 def _problems(rows: Sequence[RunRow]) -> list[tuple[str, str]]:
@@ -167,7 +182,8 @@ def markdown_report(rows: Sequence[RunRow], meta: Mapping[str, str],
             "the median over all runs of each run's best cost at t s of planning (an "
             "unsolved run counts as infinite, so a median exists once over half have "
             "solved), with its 95% confidence interval by order statistics in brackets. "
-            "\"vs OMPL\" = our median over OMPL's same planner's (below 1 is better). "
+            "\"vs OMPL\" = our median over OMPL's same planner's through its Python bindings, "
+            "\"vs OMPL C++\" over OMPL's in C++ (below 1 is better). "
             "First solution: median over all runs, an unsolved run counting its limit. "
             "\"vs shortest\" (point vehicle) = the median cost at the last checkpoint over "
             "the problem's shortest path to the goal point (benchmarks/shortest_path.py); "

@@ -3,7 +3,7 @@ fastest OMPL can be run): built on first use into ``.build/`` with g++ and Debia
 ``libompl-dev`` (``apt-get install libompl-dev``), and the flat text each reads on stdin.
 
 * ``grid_ompl``: a ``.sw`` problem (:func:`grid_input`), point, ship and left modes;
-* ``family_ompl``: a geometric ``kinoplan`` problem, arm2 or rigid2 (:func:`family_input`).
+* ``family_ompl``: a ``kinoplan`` problem of any system (:func:`family_input`).
 """
 
 from __future__ import annotations
@@ -22,10 +22,11 @@ FLAGS = ("-O2", "-ffp-contract=off", "-std=c++17")
 
 def binary(name: str) -> Path | None:
     """``.build/NAME`` from ``benchmarks/ompl_cpp/NAME.cpp``, compiled when missing or
-    older than its source; None (one line on stderr when the build fails) without g++
-    or OMPL's headers."""
+    older than its source or a header beside it (common.h); None (one line on stderr when
+    the build fails) without g++ or OMPL's headers."""
     source, target = SOURCES / f"{name}.cpp", BUILD / name
-    if target.exists() and target.stat().st_mtime >= source.stat().st_mtime:
+    newest = max(path.stat().st_mtime for path in (source, *SOURCES.glob("*.h")))
+    if target.exists() and target.stat().st_mtime >= newest:
         return target
     flags = subprocess.run(["pkg-config", "--cflags", "ompl"], capture_output=True, text=True)
     if flags.returncode != 0 or shutil.which("g++") is None:
@@ -53,39 +54,58 @@ def grid_input(problem_text: str) -> bytes:
 def family_input(problem_text: str) -> bytes:
     """``family_ompl``'s input: keyword-led lines of numbers (floats by ``repr``, so
     exact): the variables (angle flag, low, high), the metric groups (weight, count,
-    indices), the check step, the arm's params or the body's vertices, the world box,
-    the obstacles (R x0 y0 x1 y1 | C cx cy r | P n x y ...), the start, the goal
-    (tolerance, count, index value ...). ValueError for a kinodynamic system."""
+    indices), the check step (geometric) or the dynamics (scheme, DT, KMIN, KMAX, the
+    pendulum's g or car1's L), the controls' bounds and our SST's radii (kinodynamic), the
+    arm's params or the body's vertices (none for the pendulum), the world box, the
+    obstacles (R x0 y0 x1 y1 | C cx cy r | P n x y ...), the start, the goal (tolerance,
+    count, index value ...)."""
     from planning_core.kinoplan_text import parse_kinoplan
     from planning_core.worlds.shapes import Disc, Rect
     problem = parse_kinoplan(problem_text)
     system, world, space = problem.system, problem.world, problem.system.space
-    if system.name not in ("arm2", "rigid2"):
-        raise ValueError(f"family_ompl plans arm2 and rigid2 problems, not {system.name}")
-    numbers = lambda values: " ".join(repr(float(v)) for v in values)  # noqa: E731
     lines = [f"system {system.name}", f"vars {space.dimension}"]
-    lines += [f"{int(v.angle)} {numbers((v.low, v.high))}" for v in space.variables]
+    lines += [f"{int(v.angle)} {_numbers((v.low, v.high))}" for v in space.variables]
     lines.append(f"groups {len(space.groups)}")
     lines += [f"{weight!r} {len(indices)} {' '.join(map(str, indices))}"
               for indices, weight in space.groups]
-    lines.append(f"check {system.check!r}")
-    if system.name == "arm2":
-        lines.append(f"arm {numbers((system.base_x, system.base_y, system.l1, system.l2))}")
-    else:
-        lines.append(f"body {len(system.body.points)} "
-                     f"{numbers(c for point in system.body.points for c in point)}")
-    box = world.box
-    lines.append("box 0" if box is None else f"box 1 {numbers((box.x0, box.y0, box.x1, box.y1))}")
-    lines.append(f"obstacles {len(world.obstacles)}")
-    for o in world.obstacles:
+    lines += _system_lines(problem)
+    box = world.box if world is not None else None
+    lines.append("box 0" if box is None else f"box 1 {_numbers((box.x0, box.y0, box.x1, box.y1))}")
+    obstacles = world.obstacles if world is not None else ()
+    lines.append(f"obstacles {len(obstacles)}")
+    for o in obstacles:
         if isinstance(o, Rect):
-            lines.append(f"R {numbers((o.x0, o.y0, o.x1, o.y1))}")
+            lines.append(f"R {_numbers((o.x0, o.y0, o.x1, o.y1))}")
         elif isinstance(o, Disc):
-            lines.append(f"C {numbers((o.cx, o.cy, o.r))}")
+            lines.append(f"C {_numbers((o.cx, o.cy, o.r))}")
         else:
-            lines.append(f"P {len(o.points)} {numbers(c for point in o.points for c in point)}")
-    lines.append(f"start {numbers(problem.start)}")
+            lines.append(f"P {len(o.points)} {_numbers(c for point in o.points for c in point)}")
+    lines.append(f"start {_numbers(problem.start)}")
     goal = problem.goal
     lines.append(f"goal {goal.tolerance!r} {len(goal.values)} " + " ".join(
         f"{space.index(name)} {value!r}" for name, value in goal.values))
     return ("\n".join(lines) + "\n").encode()
+
+
+def _numbers(values) -> str:
+    return " ".join(repr(float(v)) for v in values)
+
+
+def _system_lines(problem) -> list[str]:
+    """The check step or the dynamics, controls and SST radii; the arm or the body."""
+    from planning_core.setups import kinoplan_setup
+    system = problem.system
+    if system.kinodynamic:
+        param = {"pendulum": "g", "car1": "L"}.get(system.name)
+        si = kinoplan_setup(problem).si
+        lines = [f"dynamics {system.scheme} {system.dt!r} {system.kmin} {system.kmax} "
+                 f"{float(getattr(system, param)) if param else 0.0!r}",
+                 f"controls {len(system.controls)} "
+                 f"{_numbers(v for bounds in system.controls for v in bounds)}",
+                 f"sst {si.selection_radius!r} {si.pruning_radius!r}"]
+    else:
+        lines = [f"check {system.check!r}"]
+    if system.name == "arm2":
+        return lines + [f"arm {_numbers((system.base_x, system.base_y, system.l1, system.l2))}"]
+    points = system.body.points if system.body is not None else ()
+    return lines + [f"body {len(points)} {_numbers(c for point in points for c in point)}"]

@@ -7,9 +7,10 @@ the best cost at any time, so the costs at 1 s and at 10 s come from the same 10
 planner not merged yet), or one of OMPL's the bindings do not offer, is skipped with one
 line on stderr, so the preset runs today and picks the planners up when they exist.
 
-* ``optimal``: sst, rrtstar, informed (ours) and OMPL's SST, RRT*, Informed RRT* on the
-  course maps and two small suite maps (point vehicle, both ships), arm2's five pairs,
-  the rigid2 scenes and one problem of each kinodynamic family system; 20 seeds, 10 s.
+* ``optimal``: sst, rrtstar, informed (ours) and OMPL's SST, RRT*, Informed RRT* (its
+  Python bindings, and C++ through benchmarks/ompl_cpp_planner.py) on the course maps and
+  two small suite maps (point vehicle, both ships), arm2's five pairs, the rigid2 scenes
+  and one problem of each kinodynamic family system; 20 seeds, 10 s.
 * ``optimal-smoke``: one small point problem and one arm2 pair, 2 seeds, 2 s (tests).
 """
 
@@ -20,7 +21,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable
 
-from benchmarks.catalog import OMPL_PREFIX, PlannerChoice, ompl_installed
+from benchmarks.catalog import OMPL_CPP_PREFIX, OMPL_PREFIX, PlannerChoice, ompl_installed
 from benchmarks.family import family_problems, system_of
 from benchmarks.generator import problem_id
 from benchmarks.harness import RunSpec
@@ -29,8 +30,9 @@ from planning_core.vehicles import Vehicle
 
 OURS = ("sst", "rrtstar", "informed")
 OMPLS = tuple(OMPL_PREFIX + name for name in OURS)
+OMPL_CPPS = tuple(OMPL_CPP_PREFIX + name for name in OURS)
 OMPL_GAPS = {"ompl-sst": "OMPL's Python bindings (ompl 2.0) bind SST without a "
-                         "constructor, and the C++ programs have no SST yet"}
+                         "constructor (OMPL's SST runs in C++: ompl-cpp-sst)"}
 """OMPL planners the preset names but cannot run, and why (said when skipped)."""
 
 
@@ -55,14 +57,14 @@ def _grid(vehicle: Vehicle, *names: str) -> VehiclePlan:
 
 OPTIMAL_PRESETS = {
     "optimal": OptimalPreset(
-        "optimal", OURS + OMPLS,
+        "optimal", OURS + OMPLS + OMPL_CPPS,
         (_grid(Vehicle.POINT, "course-*", "random-d20-20", "maze-10"),
          _grid(Vehicle.SPACESHIP, "course-*"), _grid(Vehicle.LEFT_SPACESHIP, "course-*")),
         ("arm2-pair*", "rigid2-scene*", "pendulum-t3", "car2-corridors", "unicycle-circles",
          "car1-scene1"),
         20, 10.0, (1.0, 10.0)),
     "optimal-smoke": OptimalPreset(
-        "optimal-smoke", OURS + OMPLS, (_grid(Vehicle.POINT, "course-simple-0"),),
+        "optimal-smoke", OURS + OMPLS + OMPL_CPPS, (_grid(Vehicle.POINT, "course-simple-0"),),
         ("arm2-pair1",), 2, 2.0, (1.0, 2.0)),
 }
 
@@ -100,6 +102,8 @@ def optimal_planners(preset: OptimalPreset, include_ompl: bool,
 def _ompl_choice(planner_id: str, include_ompl: bool, say) -> PlannerChoice | None:
     if not include_ompl:
         return None
+    if planner_id.startswith(OMPL_CPP_PREFIX):
+        return _ompl_cpp_choice(planner_id, say)
     if planner_id in OMPL_GAPS:
         say(f"benchmarks: note: {planner_id}: {OMPL_GAPS[planner_id]}: skipped")
         return None
@@ -108,6 +112,25 @@ def _ompl_choice(planner_id: str, include_ompl: bool, say) -> PlannerChoice | No
     from benchmarks.catalog import GEOMETRIC_SYSTEMS
     return PlannerChoice(planner_id, "ompl", planner_id[len(OMPL_PREFIX):],
                          frozenset({Vehicle.POINT}), frozenset(GEOMETRIC_SYSTEMS),
+                         optimize=True)
+
+
+def _ompl_cpp_choice(planner_id: str, say) -> PlannerChoice | None:
+    """OMPL's planner in C++ (its programs built here, now, not in every worker): SST for
+    the ships and the kinodynamic family, RRT* and Informed RRT* for the point vehicle,
+    arm2 and rigid2."""
+    from benchmarks.catalog import GEOMETRIC_SYSTEMS, KINODYNAMIC_SYSTEMS
+    from benchmarks.ompl_cpp_programs import binary
+    if binary("grid_ompl") is None or binary("family_ompl") is None:
+        say(f"benchmarks: note: {planner_id}: the C++ programs could not be built (g++ and "
+            "libompl-dev: apt-get install libompl-dev): skipped")
+        return None
+    name = planner_id[len(OMPL_CPP_PREFIX):]
+    if name == "sst":
+        vehicles, systems = {Vehicle.SPACESHIP, Vehicle.LEFT_SPACESHIP}, KINODYNAMIC_SYSTEMS
+    else:
+        vehicles, systems = {Vehicle.POINT}, GEOMETRIC_SYSTEMS
+    return PlannerChoice(planner_id, "ompl-cpp", name, frozenset(vehicles), frozenset(systems),
                          optimize=True)
 
 

@@ -1,5 +1,5 @@
-// OMPL with C++ callbacks on the geometric family (SPEC 5: arm2, rigid2), the practical
-// limit for these planners (issue 19). The set-up of benchmarks/ompl_family.py, in C++:
+// OMPL with C++ callbacks on the family (SPEC 5), the practical limit for these planners
+// (issue 19). The set-up of benchmarks/ompl_family.py, in C++:
 //   state space: a compound of SO2 and bounded RealVector subspaces, one per metric group
 //     (a group holding an angle and more than one variable: one subspace per variable),
 //     variables in no group in a subspace of weight 0; OMPL's distance is then our metric
@@ -7,35 +7,46 @@
 //   validity: bounds; the arm's two links (closed segments) or the body placed at
 //     (x, y, theta) inside the closed world box and off every closed obstacle, by exact
 //     tests (separating axes; closest point for a disc) behind a bounding-box check;
-//   motions: our metric's length d, n = max(1, ceil(d / check)), the n samples after the
-//     start tested (SPEC 5.2); goal: our metric restricted to the goal's variables,
-//     threshold a hair inside the tolerance; RRT (goal bias 0.05) or RRTConnect.
+//     the pendulum: bounds only;
+//   goal: our metric restricted to the goal's variables, threshold a hair inside the
+//     tolerance;
+//   geometric (arm2, rigid2): motions of our metric's length d checked at the
+//     n = max(1, ceil(d / check)) samples after the start (SPEC 5.2); RRT (goal bias
+//     0.05), RRTConnect, RRT* or Informed RRT* (OMPL's defaults) minimizing path length
+//     in our metric (OMPL's objective where OMPL's distance is our metric and the planner
+//     is RRT*, else one calling our metric, as the Python peer);
+//   kinodynamic (pendulum, car2, unicycle, car1): our slice (SPEC 5.2's euler or rk4,
+//     the same float operations in the same order as planning_core/integrators.py) as
+//     the propagator, OMPL's step DT, KMIN..KMAX steps a control; control RRT (goal bias
+//     0.05) or SST (our SST's radii, from the input) minimizing the duration: a weight-0
+//     subspace counts the slices from the start, a motion costs its slices times DT.
 // Input on stdin: the flat problem benchmarks/ompl_cpp_programs.py writes (family_input).
-// Usage: family_ompl rrt|rrtconnect TIME_LIMIT SEED
-// Prints the path on stdout in SPEC 5.4's geometric format (no tree), so the validator can
-// check it, and one line on stderr: "ompl_cpp stats: status=solved|unsolved
-// planning_seconds=S tree_nodes=N motion_checks=M" (S: OMPL's set-up and solve).
+// Usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME_LIMIT SEED [optimize]
+//   optimize: RRT*, Informed RRT* and SST keep improving until the limit.
+// Prints the path on stdout in SPEC 5.4's format (no tree), so the validator can check
+// it, and common.h's stats line (with " motion_checks=M" for a geometric problem) and,
+// with optimize, its progress line on stderr. Exit 0 solved, 2 bad usage, 3 unsolved.
+#include "common.h"
+
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
+#include <ompl/control/SimpleSetup.h>
+#include <ompl/control/planners/rrt/RRT.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
-#include <limits>
-#include <string>
-#include <vector>
 
 namespace ob = ompl::base;
+namespace oc = ompl::control;
 namespace og = ompl::geometric;
+using ompl_cpp::Run;
 
 static const double TAU = 2.0 * M_PI, SNAP = 1e-12;
 
@@ -53,9 +64,15 @@ struct Problem {
     std::vector<bool> angle;
     std::vector<double> low, high;
     std::vector<std::pair<double, std::vector<int>>> groups;
-    double check = 0.01;
+    double check = 0.01;                    // geometric
+    bool kinodynamic = false;
+    std::string scheme;                     // kinodynamic: euler | rk4
+    double dt = 0, param = 0;               // param: the pendulum's g, car1's L
+    int kmin = 1, kmax = 1;
+    std::vector<double> controlLow, controlHigh;
+    double selection = 0, pruning = 0;      // our SST's radii
     double bx = 0, by = 0, l1 = 1, l2 = 1;  // arm2
-    std::vector<Point> body;                // rigid2
+    std::vector<Point> body;                // rigid2, the cars
     bool hasBox = false;
     double X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
     std::vector<Obstacle> obstacles;
@@ -149,17 +166,20 @@ static bool shapeFree(const Problem &p, const std::vector<Point> &pts, bool segm
     return true;
 }
 
-// ---- the problem's state: validity, metric, interpolation ----
+// ---- the problem's state: validity, metric, interpolation, dynamics ----
 
 struct Family {
     Problem p;
     std::vector<std::pair<int, int>> slot;  // per variable: subspace, index in it
+    int counter = -1;                       // kinodynamic: the slice count's subspace
+    bool exactMetric = true;                // OMPL's distance is our metric
 
     bool valid(const double *q) const {
         for (size_t i = 0; i < p.angle.size(); ++i) {
             if (!std::isfinite(q[i])) return false;
             if (!p.angle[i] && !(p.low[i] <= q[i] && q[i] <= p.high[i])) return false;
         }
+        if (p.system == "pendulum") return true;
         if (p.system == "arm2") {
             const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
             const double c2 = std::cos(q[0] + q[1]), s2 = std::sin(q[0] + q[1]);
@@ -191,6 +211,41 @@ struct Family {
         return total;
     }
 
+    // SPEC 5.2's rates, each written as the system's expression (planning_core/systems).
+    void rates(const double *s, const double *u, double *r) const {
+        if (p.system == "pendulum") { r[0] = s[1]; r[1] = -p.param * std::cos(s[0]) + u[0]; }
+        else if (p.system == "car1") {
+            r[0] = u[0] * std::cos(s[2]); r[1] = u[0] * std::sin(s[2]);
+            r[2] = (u[0] / p.param) * std::tan(u[1]);
+        } else {  // car2, unicycle
+            r[0] = s[3] * std::cos(s[2]); r[1] = s[3] * std::sin(s[2]);
+            r[2] = p.system == "car2" ? u[0] : s[4];
+            r[3] = p.system == "car2" ? u[1] : u[0];
+            if (p.system == "unicycle") r[4] = u[1];
+        }
+    }
+
+    // One slice of DT (planning_core/integrators.py's euler_slice or rk4_slice).
+    void slice(const double *s, const double *u, double *out) const {
+        const size_t n = slot.size();
+        double k1[8], k2[8], k3[8], k4[8], mid[8];
+        rates(s, u, k1);
+        if (p.scheme == "euler") {
+            for (size_t i = 0; i < n; ++i) out[i] = s[i] + p.dt * k1[i];
+        } else {
+            const double half = p.dt / 2.0, sixth = p.dt / 6.0;
+            for (size_t i = 0; i < n; ++i) mid[i] = s[i] + half * k1[i];
+            rates(mid, u, k2);
+            for (size_t i = 0; i < n; ++i) mid[i] = s[i] + half * k2[i];
+            rates(mid, u, k3);
+            for (size_t i = 0; i < n; ++i) mid[i] = s[i] + p.dt * k3[i];
+            rates(mid, u, k4);
+            for (size_t i = 0; i < n; ++i)
+                out[i] = s[i] + sixth * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        for (size_t i = 0; i < n; ++i) if (p.angle[i]) out[i] = std::remainder(out[i], TAU);
+    }
+
     void get(const ob::State *s, double *q) const {
         const auto *c = s->as<ob::CompoundState>();
         for (size_t i = 0; i < slot.size(); ++i) {
@@ -208,6 +263,13 @@ struct Family {
             else sub->as<ob::RealVectorStateSpace::StateType>()->values[slot[i].second] = q[i];
         }
     }
+
+    // Kinodynamic: the slices from the start to this state.
+    double &slices(ob::State *s) const {
+        return s->as<ob::CompoundState>()->components[counter]
+            ->as<ob::RealVectorStateSpace::StateType>()->values[0];
+    }
+    double slices(const ob::State *s) const { return slices(const_cast<ob::State *>(s)); }
 };
 
 // SPEC 5.2's motion check: the n samples after the start, n = max(1, ceil(d / check)).
@@ -280,9 +342,44 @@ private:
     ob::StateSamplerPtr sampler_;
 };
 
-// ---- input, set-up, output ----
+// Path length in our metric (where OMPL's distance is not it, or for Informed RRT*: OMPL's
+// direct informed sampler refuses our compound space, as in the Python peer).
+class MetricLength : public ob::OptimizationObjective {
+public:
+    MetricLength(const ob::SpaceInformationPtr &si, const Family &f)
+        : ob::OptimizationObjective(si), f_(f) {}
+    ob::Cost stateCost(const ob::State *) const override { return identityCost(); }
+    ob::Cost motionCost(const ob::State *a, const ob::State *b) const override {
+        double qa[8], qb[8];
+        f_.get(a, qa); f_.get(b, qb);
+        return ob::Cost(f_.distance(qa, qb));
+    }
+private:
+    const Family &f_;
+};
 
-static bool readProblem(std::istream &in, Problem &p) {
+// A kinodynamic motion's duration: its slices times DT.
+class Duration : public ob::OptimizationObjective {
+public:
+    Duration(const ob::SpaceInformationPtr &si, const Family &f)
+        : ob::OptimizationObjective(si), f_(f) {}
+    ob::Cost stateCost(const ob::State *) const override { return identityCost(); }
+    ob::Cost motionCost(const ob::State *a, const ob::State *b) const override {
+        return ob::Cost((f_.slices(b) - f_.slices(a)) * f_.p.dt);
+    }
+private:
+    const Family &f_;
+};
+
+// ---- input ----
+
+static bool readNumbers(std::istream &in, std::vector<double> &values, size_t count) {
+    values.resize(count);
+    for (double &v : values) if (!(in >> v)) return false;
+    return true;
+}
+
+static bool readVariables(std::istream &in, Problem &p) {
     std::string word;
     int n, count;
     if (!(in >> word >> p.system >> word >> n) || n < 1 || n > 8) return false;
@@ -300,44 +397,67 @@ static bool readProblem(std::istream &in, Problem &p) {
         for (int &i : idx) if (!(in >> i) || i < 0 || i >= n) return false;
         p.groups.push_back({w, idx});
     }
-    if (!(in >> word >> p.check)) return false;
-    if (p.system == "arm2") { if (!(in >> word >> p.bx >> p.by >> p.l1 >> p.l2)) return false; }
-    else if (p.system == "rigid2") {
-        if (!(in >> word >> count) || count < 3) return false;
-        p.body.resize(count);
-        for (Point &v : p.body) if (!(in >> v.x >> v.y)) return false;
+    return true;
+}
+
+// "check STEP" (geometric) or "dynamics SCHEME DT KMIN KMAX PARAM / controls M LO HI ... /
+// sst SELECTION PRUNING" (kinodynamic); then "arm ..." (arm2) or "body N X Y ...".
+static bool readSystem(std::istream &in, Problem &p) {
+    std::string word;
+    int count;
+    p.kinodynamic = p.system != "arm2" && p.system != "rigid2";
+    if (!p.kinodynamic) {
+        if (!(in >> word >> p.check)) return false;
+    } else {
+        if (!(in >> word >> p.scheme >> p.dt >> p.kmin >> p.kmax >> p.param >> word >> count)
+            || count < 1 || count > 8 || p.kmin < 1 || p.kmax < p.kmin) return false;
+        p.controlLow.resize(count); p.controlHigh.resize(count);
+        for (int i = 0; i < count; ++i)
+            if (!(in >> p.controlLow[i] >> p.controlHigh[i])) return false;
+        if (!(in >> word >> p.selection >> p.pruning)) return false;
+    }
+    if (p.system == "arm2") return static_cast<bool>(in >> word >> p.bx >> p.by >> p.l1 >> p.l2);
+    if (!(in >> word >> count) || (count < 3 && !(p.system == "pendulum" && count == 0)))
+        return false;
+    p.body.resize(count);
+    for (Point &v : p.body) if (!(in >> v.x >> v.y)) return false;
+    return true;
+}
+
+static bool readObstacle(std::istream &in, Obstacle &o) {
+    if (!(in >> o.kind)) return false;
+    if (o.kind == 'R') {
+        if (!(in >> o.x0 >> o.y0 >> o.x1 >> o.y1)) return false;
+        o.points = {{o.x0, o.y0}, {o.x1, o.y0}, {o.x1, o.y1}, {o.x0, o.y1}};
+    } else if (o.kind == 'C') {
+        if (!(in >> o.cx >> o.cy >> o.r)) return false;
+        o.x0 = o.cx - o.r; o.x1 = o.cx + o.r; o.y0 = o.cy - o.r; o.y1 = o.cy + o.r;
+    } else if (o.kind == 'P') {
+        int m;
+        if (!(in >> m) || m < 3) return false;
+        o.points.resize(m);
+        for (Point &v : o.points) if (!(in >> v.x >> v.y)) return false;
+        o.x0 = o.x1 = o.points[0].x; o.y0 = o.y1 = o.points[0].y;
+        for (const Point &v : o.points) {
+            o.x0 = std::min(o.x0, v.x); o.x1 = std::max(o.x1, v.x);
+            o.y0 = std::min(o.y0, v.y); o.y1 = std::max(o.y1, v.y);
+        }
     } else return false;
-    int has;
-    if (!(in >> word >> has)) return false;
+    return true;
+}
+
+static bool readProblem(std::istream &in, Problem &p) {
+    std::string word;
+    int has, count;
+    if (!readVariables(in, p) || !readSystem(in, p) || !(in >> word >> has)) return false;
     p.hasBox = has != 0;
     if (p.hasBox && !(in >> p.X0 >> p.Y0 >> p.X1 >> p.Y1)) return false;
     if (!(in >> word >> count)) return false;
-    for (int k = 0; k < count; ++k) {
-        Obstacle o;
-        if (!(in >> o.kind)) return false;
-        if (o.kind == 'R') {
-            if (!(in >> o.x0 >> o.y0 >> o.x1 >> o.y1)) return false;
-            o.points = {{o.x0, o.y0}, {o.x1, o.y0}, {o.x1, o.y1}, {o.x0, o.y1}};
-        } else if (o.kind == 'C') {
-            if (!(in >> o.cx >> o.cy >> o.r)) return false;
-            o.x0 = o.cx - o.r; o.x1 = o.cx + o.r; o.y0 = o.cy - o.r; o.y1 = o.cy + o.r;
-        } else if (o.kind == 'P') {
-            int m;
-            if (!(in >> m) || m < 3) return false;
-            o.points.resize(m);
-            for (Point &v : o.points) if (!(in >> v.x >> v.y)) return false;
-            o.x0 = o.x1 = o.points[0].x; o.y0 = o.y1 = o.points[0].y;
-            for (const Point &v : o.points) {
-                o.x0 = std::min(o.x0, v.x); o.x1 = std::max(o.x1, v.x);
-                o.y0 = std::min(o.y0, v.y); o.y1 = std::max(o.y1, v.y);
-            }
-        } else return false;
-        p.obstacles.push_back(o);
-    }
-    p.start.resize(n);
-    if (!(in >> word)) return false;
-    for (double &v : p.start) if (!(in >> v)) return false;
+    p.obstacles.resize(count);
+    for (Obstacle &o : p.obstacles) if (!readObstacle(in, o)) return false;
+    if (!(in >> word) || !readNumbers(in, p.start, p.angle.size())) return false;
     if (!(in >> word >> p.tolerance >> count)) return false;
+    const int n = static_cast<int>(p.angle.size());
     for (int k = 0; k < count; ++k) {
         int i; double v;
         if (!(in >> i >> v) || i < 0 || i >= n) return false;
@@ -345,6 +465,8 @@ static bool readProblem(std::istream &in, Problem &p) {
     }
     return true;
 }
+
+// ---- set-up ----
 
 static void addSubspace(ob::CompoundStateSpace &space, Family &f, const std::vector<int> &idx,
                         double weight) {
@@ -381,82 +503,188 @@ static std::shared_ptr<ob::CompoundStateSpace> layout(Family &f) {
     for (const auto &part : parts) {
         bool anyAngle = false;
         for (int i : part.second) anyAngle = anyAngle || f.p.angle[i];
-        if (anyAngle && part.second.size() > 1)
+        if (anyAngle && part.second.size() > 1) {
+            f.exactMetric = false;
             for (int i : part.second) addSubspace(*space, f, {i}, part.first);
-        else
+        } else {
             addSubspace(*space, f, part.second, part.first);
+        }
+    }
+    if (f.p.kinodynamic) {  // the slice count, weighing nothing
+        auto counter = std::make_shared<ob::RealVectorStateSpace>(1);
+        counter->setBounds(0.0, 1e12);
+        f.counter = space->getSubspaceCount();
+        space->addSubspace(counter, 0.0);
     }
     return space;
 }
 
-static void printPath(const Family &f, const og::PathGeometric &path) {
-    std::printf("%zu\n", path.getStateCount());
-    double q[8];
-    for (size_t k = 0; k < path.getStateCount(); ++k) {
-        f.get(path.getState(k), q);
-        for (size_t i = 0; i < f.slot.size(); ++i) std::printf(i ? " %.17g" : "%.17g", q[i]);
-        std::printf("\n");
-    }
-    std::printf("0\n");
-}
-
-// Plans; prints the path (when solved) after the time is taken, and the stats line.
-static bool solve(Family &f, const std::string &planner, double limit,
-                  std::chrono::steady_clock::time_point began) {
-    auto space = layout(f);
-    auto info = std::make_shared<ob::SpaceInformation>(space);
-    info->setStateValidityChecker([&f](const ob::State *s) {
+static void setValidity(ob::SpaceInformation &info, const Family &f) {
+    info.setStateValidityChecker([&f](const ob::State *s) {
         double q[8];
         f.get(s, q);
         return f.valid(q);
     });
+}
+
+static void setStartAndGoal(ob::ProblemDefinition &problem, const ob::SpaceInformationPtr &info,
+                            const Family &f) {
+    ob::ScopedState<> start(info->getStateSpace());
+    f.put(start.get(), f.p.start.data());
+    if (f.p.kinodynamic) f.slices(start.get()) = 0.0;
+    problem.addStartState(start);
+    auto goal = std::make_shared<FamilyGoal>(info, f);
+    goal->setSampler(info->getStateSpace()->allocStateSampler());
+    problem.setGoal(goal);
+}
+
+// RRT, RRTConnect, RRT* or Informed RRT* on a geometric problem.
+static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
+                                       const std::string &planner, Run &run) {
+    auto info = setup.getSpaceInformation();
+    if (planner == "rrtconnect") return std::make_shared<og::RRTConnect>(info);
+    if (planner == "rrt") {
+        auto rrt = std::make_shared<og::RRT>(info);
+        rrt->setGoalBias(0.05);
+        return rrt;
+    }
+    const bool informed = planner == "informed";
+    ob::OptimizationObjectivePtr objective;
+    if (f.exactMetric && !informed)
+        objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
+    else
+        objective = std::make_shared<MetricLength>(info, f);
+    run.setThreshold(*objective);
+    setup.setOptimizationObjective(objective);
+    return ompl_cpp::starPlanner(info, informed, run);
+}
+
+// Control RRT or SST on a kinodynamic problem.
+static ob::PlannerPtr kinodynamicPlanner(oc::SimpleSetup &setup, const Family &f,
+                                         const std::string &planner, Run &run) {
+    auto info = setup.getSpaceInformation();
+    if (planner == "rrt") {
+        auto rrt = std::make_shared<oc::RRT>(info);
+        rrt->setGoalBias(0.05);
+        return rrt;
+    }
+    auto objective = std::make_shared<Duration>(info, f);
+    run.setThreshold(*objective);
+    setup.getProblemDefinition()->setOptimizationObjective(objective);
+    return ompl_cpp::sstPlanner(info, f.p.selection, f.p.pruning, run);
+}
+
+// ---- planning and output ----
+
+static void printState(const Family &f, const ob::State *s) {
+    double q[8];
+    f.get(s, q);
+    for (size_t i = 0; i < f.slot.size(); ++i) std::printf(i ? " %.17g" : "%.17g", q[i]);
+}
+
+static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
+    auto info = std::make_shared<ob::SpaceInformation>(layout(f));
+    setValidity(*info, f);
     info->setMotionValidator(std::make_shared<SampledMotions>(info, f));
     info->setup();
     og::SimpleSetup setup(info);
-    ob::ScopedState<> start(space);
-    f.put(start.get(), f.p.start.data());
-    setup.setStartState(start);
-    auto goal = std::make_shared<FamilyGoal>(info, f);
-    goal->setSampler(space->allocStateSampler());
-    setup.setGoal(goal);
-    if (planner == "rrtconnect") {
-        setup.setPlanner(std::make_shared<og::RRTConnect>(info));
-    } else {
-        auto rrt = std::make_shared<og::RRT>(info);
-        rrt->setGoalBias(0.05);
-        setup.setPlanner(rrt);
-    }
-    setup.solve(limit);
+    setStartAndGoal(*setup.getProblemDefinition(), info, f);
+    setup.setPlanner(geometricPlanner(setup, f, planner, run));
+    setup.solve(run.condition());
     const bool solved = setup.haveExactSolutionPath();
-    const double seconds = std::chrono::duration<double>(
-        std::chrono::steady_clock::now() - began).count();
-    if (solved) printPath(f, setup.getSolutionPath());
+    const double seconds = run.seconds();
+    if (solved) {
+        const og::PathGeometric &path = setup.getSolutionPath();
+        std::printf("%zu\n", path.getStateCount());
+        for (size_t k = 0; k < path.getStateCount(); ++k) {
+            printState(f, path.getState(k));
+            std::printf("\n");
+        }
+        std::printf("0\n");
+    }
     ob::PlannerData data(info);
     setup.getPlannerData(data);
     const auto motions = info->getMotionValidator();
-    std::fprintf(stderr, "ompl_cpp stats: status=%s planning_seconds=%.6f tree_nodes=%u "
-                 "motion_checks=%u\n", solved ? "solved" : "unsolved", seconds,
-                 data.numVertices(), motions->getValidMotionCount() + motions->getInvalidMotionCount());
+    run.report(solved, seconds, data.numVertices(), " motion_checks=" + std::to_string(
+        motions->getValidMotionCount() + motions->getInvalidMotionCount()));
+    return solved;
+}
+
+static void printControlPath(const Family &f, const oc::PathControl &path) {
+    std::printf("%zu\n", path.getControlCount());
+    for (size_t k = 0; k < path.getControlCount(); ++k) {
+        printState(f, path.getState(k));
+        const double *u = path.getControl(k)->as<oc::RealVectorControlSpace::ControlType>()->values;
+        for (size_t j = 0; j < f.p.controlLow.size(); ++j) std::printf(" %.17g", u[j]);
+        std::printf(" %ld\n", std::lround(path.getControlDuration(k) / f.p.dt));
+    }
+    std::printf("0\n");
+}
+
+static bool solveKinodynamic(Family &f, const std::string &planner, Run &run) {
+    auto space = layout(f);
+    const size_t m = f.p.controlLow.size();
+    auto controls = std::make_shared<oc::RealVectorControlSpace>(space, m);
+    ob::RealVectorBounds bounds(m);
+    for (size_t j = 0; j < m; ++j) {
+        bounds.setLow(j, f.p.controlLow[j]);
+        bounds.setHigh(j, f.p.controlHigh[j]);
+    }
+    controls->setBounds(bounds);
+    auto info = std::make_shared<oc::SpaceInformation>(space, controls);
+    setValidity(*info, f);
+    info->setStatePropagator([&f](const ob::State *from, const oc::Control *c, double,
+                                  ob::State *to) {
+        double q[8], next[8];  // one slice: the step is DT
+        f.get(from, q);
+        f.slice(q, c->as<oc::RealVectorControlSpace::ControlType>()->values, next);
+        f.put(to, next);
+        f.slices(to) = f.slices(from) + 1.0;
+    });
+    info->setPropagationStepSize(f.p.dt);
+    info->setMinMaxControlDuration(f.p.kmin, f.p.kmax);
+    info->setup();
+    oc::SimpleSetup setup(info);
+    setStartAndGoal(*setup.getProblemDefinition(), info, f);
+    setup.setPlanner(kinodynamicPlanner(setup, f, planner, run));
+    setup.solve(run.condition());
+    const bool solved = setup.haveExactSolutionPath();
+    const double seconds = run.seconds();
+    if (solved) printControlPath(f, setup.getSolutionPath());
+    ob::PlannerData data(info);
+    setup.getPlannerData(data);
+    run.report(solved, seconds, data.numVertices(), "");
     return solved;
 }
 
 int main(int argc, char **argv) {
-    if (argc != 4) {
-        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect TIME SEED\n");
+    const bool optimize = ompl_cpp::optimizeFlag(argc, argv, 4);
+    if (argc != 4 && !optimize) {
+        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME SEED "
+                             "[optimize]\n");
         return 2;
     }
     const std::string planner = argv[1];
-    if (planner != "rrt" && planner != "rrtconnect") {
-        std::fprintf(stderr, "family_ompl: unknown planner %s\n", planner.c_str());
-        return 2;
-    }
     Family f;
     if (!readProblem(std::cin, f.p)) {
         std::fprintf(stderr, "family_ompl: bad input\n");
         return 2;
     }
-    ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-    ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(std::stoul(argv[3]) % 0xFFFFFFFFul + 1));
-    const auto began = std::chrono::steady_clock::now();
-    return solve(f, planner, std::stod(argv[2]), began) ? 0 : 3;
+    const bool geometric = planner == "rrtconnect" || planner == "rrtstar" || planner == "informed";
+    if (f.p.kinodynamic ? geometric : planner == "sst") {
+        std::fprintf(stderr, "family_ompl: %s does not plan for %s\n", planner.c_str(),
+                     f.p.system.c_str());
+        return 2;
+    }
+    if (!geometric && planner != "rrt" && planner != "sst") {
+        std::fprintf(stderr, "family_ompl: unknown planner %s\n", planner.c_str());
+        return 2;
+    }
+    ompl_cpp::seedOmpl(argv[3]);
+    Run run;
+    run.limit = std::stod(argv[2]);
+    run.optimize = optimize;
+    const bool solved = f.p.kinodynamic ? solveKinodynamic(f, planner, run)
+                                         : solveGeometric(f, planner, run);
+    return solved ? 0 : 3;
 }

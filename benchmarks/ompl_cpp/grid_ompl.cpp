@@ -1,14 +1,23 @@
 // OMPL with C++ callbacks on our grid problems: the practical limit for these planners
 // (issue 19). The same set-up as benchmarks/ompl_adapters.py, written in C++:
-//   point: R^2, geometric RRT (goal bias 0.05) or RRT-Connect, motions checked every
-//          0.05 map units, goal radius 0.1;
-//   ship, left: R^4, control RRT (goal bias 0.05), one step of 20 slices per control
-//          (SPEC 2's slice; a slice that collides makes the step invalid).
-// Input on stdin (bench_compiled.py writes it from a parsed .sw problem):
+//   point: R^2, motions checked every 0.05 map units, goal radius 0.1; geometric RRT
+//          (goal bias 0.05), RRT-Connect, RRT* or Informed RRT* (OMPL's defaults,
+//          minimizing path length: OMPL's own objective, as the Python peer);
+//   ship, left: R^4, one step of 20 slices per control (SPEC 2's slice; a slice that
+//          collides makes the step invalid); control RRT (goal bias 0.05) or SST
+//          (our SST's radii, 0.25 map units; cost: the length of the polyline through
+//          the positions, our cost for the ships, docs/optimal-planning.md).
+// Input on stdin (benchmarks/ompl_cpp_programs.py's grid_input writes it from a .sw problem):
 //   W H / W*H characters 0 or 1, row-major from the bottom row / sx sy gx gy
-// Usage: grid_ompl point|rrtconnect|ship|left TIME_LIMIT SEED
-// Prints one line on stderr: "ompl_cpp stats: status=solved|unsolved planning_seconds=S".
+// Usage: grid_ompl MODE TIME_LIMIT SEED [optimize]
+//   MODE: point (RRT) | rrtconnect | rrtstar | informed | ship (RRT) | left (RRT) | sst | sst-left
+//   optimize: RRT*, Informed RRT* and SST keep improving until the limit.
+// Prints the answer on stdout in SPEC 2's format (no tree) and common.h's stats line (and,
+// with optimize, its progress line) on stderr. Exit 0 solved, 2 bad usage, 3 unsolved.
+#include "common.h"
+
 #include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/control/SimpleSetup.h>
 #include <ompl/control/planners/rrt/RRT.h>
@@ -16,19 +25,13 @@
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
 
-#include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
-#include <string>
-#include <vector>
 
 namespace ob = ompl::base;
 namespace oc = ompl::control;
 namespace og = ompl::geometric;
+using ompl_cpp::Run;
 
 struct Grid {
     int width = 0, height = 0;
@@ -41,8 +44,32 @@ struct Grid {
 };
 
 static const double GOAL_RADIUS = 0.1 * (1.0 - 1e-9);
+static const double SHIP_SST_RADIUS = 0.25;  // our SST's selection and pruning radii
 
-static bool solvePoint(const Grid &g, bool connect, double limit) {
+static const double *values(const ob::State *s) {
+    return s->as<ob::RealVectorStateSpace::StateType>()->values;
+}
+
+// RRT* or Informed RRT* minimizing OMPL's path length (our cost in the plane).
+static ob::PlannerPtr pointOptimizer(og::SimpleSetup &setup, bool informed, Run &run) {
+    auto info = setup.getSpaceInformation();
+    auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
+    run.setThreshold(*objective);
+    setup.setOptimizationObjective(objective);
+    return ompl_cpp::starPlanner(info, informed, run);
+}
+
+static ob::PlannerPtr pointPlanner(og::SimpleSetup &setup, const std::string &mode, Run &run) {
+    if (mode == "rrtstar" || mode == "informed")
+        return pointOptimizer(setup, mode == "informed", run);
+    auto info = setup.getSpaceInformation();
+    if (mode == "rrtconnect") return std::make_shared<og::RRTConnect>(info);
+    auto rrt = std::make_shared<og::RRT>(info);
+    rrt->setGoalBias(0.05);
+    return rrt;
+}
+
+static bool solvePoint(const Grid &g, const std::string &mode, Run &run) {
     auto space = std::make_shared<ob::RealVectorStateSpace>(2);
     ob::RealVectorBounds bounds(2);
     bounds.setLow(0, 0.0); bounds.setHigh(0, g.width);
@@ -50,23 +77,28 @@ static bool solvePoint(const Grid &g, bool connect, double limit) {
     space->setBounds(bounds);
     og::SimpleSetup setup(space);
     setup.setStateValidityChecker([&g](const ob::State *s) {
-        const double *v = s->as<ob::RealVectorStateSpace::StateType>()->values;
-        return g.free(v[0], v[1]);
+        return g.free(values(s)[0], values(s)[1]);
     });
     auto info = setup.getSpaceInformation();
     info->setStateValidityCheckingResolution(0.05 / space->getMaximumExtent());
     ob::ScopedState<> start(space), goal(space);
     start[0] = g.sx; start[1] = g.sy; goal[0] = g.gx; goal[1] = g.gy;
     setup.setStartAndGoalStates(start, goal, GOAL_RADIUS);
-    if (connect) {
-        setup.setPlanner(std::make_shared<og::RRTConnect>(info));
-    } else {
-        auto rrt = std::make_shared<og::RRT>(info);
-        rrt->setGoalBias(0.05);
-        setup.setPlanner(rrt);
+    setup.setPlanner(pointPlanner(setup, mode, run));
+    setup.solve(run.condition());
+    const bool solved = setup.haveExactSolutionPath();
+    const double seconds = run.seconds();
+    ob::PlannerData data(info);
+    setup.getPlannerData(data);
+    if (solved) {
+        const og::PathGeometric &path = setup.getSolutionPath();
+        std::printf("%zu\n", path.getStateCount());
+        for (std::size_t k = 0; k < path.getStateCount(); ++k)
+            std::printf("%.17g %.17g\n", values(path.getState(k))[0], values(path.getState(k))[1]);
+        std::printf("0\n");
     }
-    setup.solve(limit);
-    return setup.haveExactSolutionPath();
+    run.report(solved, seconds, data.numVertices(), "");
+    return solved;
 }
 
 class PositionGoal : public ob::GoalSampleableRegion {
@@ -74,8 +106,7 @@ public:
     PositionGoal(const ob::SpaceInformationPtr &si, double gx, double gy)
         : ob::GoalSampleableRegion(si), gx_(gx), gy_(gy) { setThreshold(GOAL_RADIUS); }
     double distanceGoal(const ob::State *s) const override {
-        const double *v = s->as<ob::RealVectorStateSpace::StateType>()->values;
-        return std::hypot(v[0] - gx_, v[1] - gy_);
+        return std::hypot(values(s)[0] - gx_, values(s)[1] - gy_);
     }
     void sampleGoal(ob::State *s) const override {
         double *v = s->as<ob::RealVectorStateSpace::StateType>()->values;
@@ -86,7 +117,62 @@ private:
     double gx_, gy_;
 };
 
-static bool solveShip(const Grid &g, double thetaRange, double limit) {
+// The ships' cost: each step's straight distance between positions.
+class PositionLength : public ob::OptimizationObjective {
+public:
+    explicit PositionLength(const ob::SpaceInformationPtr &si) : ob::OptimizationObjective(si) {}
+    ob::Cost stateCost(const ob::State *) const override { return identityCost(); }
+    ob::Cost motionCost(const ob::State *a, const ob::State *b) const override {
+        return ob::Cost(std::hypot(values(b)[0] - values(a)[0], values(b)[1] - values(a)[1]));
+    }
+};
+
+static void propagateShip(const Grid &g, const ob::State *from, const oc::Control *c,
+                          ob::State *to) {
+    const double *s = values(from);
+    const double *u = c->as<oc::RealVectorControlSpace::ControlType>()->values;
+    double *r = to->as<ob::RealVectorStateSpace::StateType>()->values;
+    double x = s[0], y = s[1], dx = s[2], dy = s[3];
+    const double dt = 1.0 / 20, step = dt * u[1];
+    for (int k = 0; k < 20; ++k) {  // SPEC 2's slice
+        const double a = std::atan2(dy, dx) + u[0];
+        dx += step * std::cos(a);
+        dy += step * std::sin(a);
+        x += dt * dx;
+        y += dt * dy;
+        if (!(x >= 0.0 && y >= 0.0 && x < g.width && y < g.height) ||
+            g.blocked[static_cast<int>(y) * g.width + static_cast<int>(x)]) {
+            r[0] = -1.0; r[1] = -1.0; r[2] = 0.0; r[3] = 0.0;  // invalid end
+            return;
+        }
+    }
+    r[0] = x; r[1] = y; r[2] = dx; r[3] = dy;
+}
+
+static ob::PlannerPtr shipPlanner(oc::SimpleSetup &setup, bool sst, Run &run) {
+    auto info = setup.getSpaceInformation();
+    if (!sst) {
+        auto rrt = std::make_shared<oc::RRT>(info);
+        rrt->setGoalBias(0.05);
+        return rrt;
+    }
+    auto objective = std::make_shared<PositionLength>(info);
+    run.setThreshold(*objective);
+    setup.getProblemDefinition()->setOptimizationObjective(objective);
+    return ompl_cpp::sstPlanner(info, SHIP_SST_RADIUS, SHIP_SST_RADIUS, run);
+}
+
+static void printShipPath(const oc::PathControl &path) {
+    std::printf("%zu\n", path.getControlCount());
+    for (std::size_t k = 0; k < path.getControlCount(); ++k) {
+        const double *s = values(path.getState(k));
+        const double *u = path.getControl(k)->as<oc::RealVectorControlSpace::ControlType>()->values;
+        std::printf("%.17g %.17g %.17g %.17g %.17g %.17g\n", s[0], s[1], s[2], s[3], u[0], u[1]);
+    }
+    std::printf("0\n");
+}
+
+static bool solveShip(const Grid &g, double thetaRange, bool sst, Run &run) {
     auto space = std::make_shared<ob::RealVectorStateSpace>(4);
     ob::RealVectorBounds bounds(4);
     bounds.setLow(0, 0.0); bounds.setHigh(0, g.width);
@@ -100,30 +186,10 @@ static bool solveShip(const Grid &g, double thetaRange, double limit) {
     controls->setBounds(cb);
     oc::SimpleSetup setup(controls);
     setup.setStateValidityChecker([&g](const ob::State *s) {
-        const double *v = s->as<ob::RealVectorStateSpace::StateType>()->values;
-        return g.free(v[0], v[1]);
+        return g.free(values(s)[0], values(s)[1]);
     });
     setup.setStatePropagator([&g](const ob::State *from, const oc::Control *c, double,
-                                  ob::State *to) {
-        const double *s = from->as<ob::RealVectorStateSpace::StateType>()->values;
-        const double *u = c->as<oc::RealVectorControlSpace::ControlType>()->values;
-        double *r = to->as<ob::RealVectorStateSpace::StateType>()->values;
-        double x = s[0], y = s[1], dx = s[2], dy = s[3];
-        const double dt = 1.0 / 20, step = dt * u[1];
-        for (int k = 0; k < 20; ++k) {  // SPEC 2's slice
-            const double a = std::atan2(dy, dx) + u[0];
-            dx += step * std::cos(a);
-            dy += step * std::sin(a);
-            x += dt * dx;
-            y += dt * dy;
-            if (!(x >= 0.0 && y >= 0.0 && x < g.width && y < g.height) ||
-                g.blocked[static_cast<int>(y) * g.width + static_cast<int>(x)]) {
-                r[0] = -1.0; r[1] = -1.0; r[2] = 0.0; r[3] = 0.0;  // invalid end
-                return;
-            }
-        }
-        r[0] = x; r[1] = y; r[2] = dx; r[3] = dy;
-    });
+                                  ob::State *to) { propagateShip(g, from, c, to); });
     auto info = setup.getSpaceInformation();
     info->setPropagationStepSize(1.0);
     info->setMinMaxControlDuration(1, 1);
@@ -131,20 +197,25 @@ static bool solveShip(const Grid &g, double thetaRange, double limit) {
     start[0] = g.sx; start[1] = g.sy; start[2] = 0.0; start[3] = 0.0;
     setup.setStartState(start);
     setup.setGoal(std::make_shared<PositionGoal>(info, g.gx, g.gy));
-    auto rrt = std::make_shared<oc::RRT>(info);
-    rrt->setGoalBias(0.05);
-    setup.setPlanner(rrt);
-    setup.solve(limit);
-    return setup.haveExactSolutionPath();
+    setup.setPlanner(shipPlanner(setup, sst, run));
+    setup.solve(run.condition());
+    const bool solved = setup.haveExactSolutionPath();
+    const double seconds = run.seconds();
+    ob::PlannerData data(info);
+    setup.getPlannerData(data);
+    if (solved) printShipPath(setup.getSolutionPath());
+    run.report(solved, seconds, data.numVertices(), "");
+    return solved;
 }
 
 int main(int argc, char **argv) {
-    if (argc != 4) {
-        std::fprintf(stderr, "usage: grid_ompl point|rrtconnect|ship|left TIME SEED\n");
+    const bool optimize = ompl_cpp::optimizeFlag(argc, argv, 4);
+    if (argc != 4 && !optimize) {
+        std::fprintf(stderr, "usage: grid_ompl point|rrtconnect|rrtstar|informed|ship|left|sst|"
+                             "sst-left TIME SEED [optimize]\n");
         return 2;
     }
     const std::string mode = argv[1];
-    const double limit = std::stod(argv[2]);
     Grid g;
     std::string cells;
     if (!(std::cin >> g.width >> g.height >> cells >> g.sx >> g.sy >> g.gx >> g.gy) ||
@@ -153,17 +224,16 @@ int main(int argc, char **argv) {
         return 2;
     }
     for (char c : cells) g.blocked.push_back(c == '1');
-    ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-    ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(std::stoul(argv[3]) % 0xFFFFFFFFul + 1));
-    const auto began = std::chrono::steady_clock::now();
+    ompl_cpp::seedOmpl(argv[3]);
+    Run run;
+    run.limit = std::stod(argv[2]);
+    run.optimize = optimize;
     bool solved;
-    if (mode == "point" || mode == "rrtconnect") solved = solvePoint(g, mode == "rrtconnect", limit);
-    else if (mode == "ship") solved = solveShip(g, 2.0 * M_PI, limit);
-    else if (mode == "left") solved = solveShip(g, M_PI, limit);
+    if (mode == "point" || mode == "rrtconnect" || mode == "rrtstar" || mode == "informed")
+        solved = solvePoint(g, mode, run);
+    else if (mode == "ship" || mode == "sst") solved = solveShip(g, 2.0 * M_PI, mode == "sst", run);
+    else if (mode == "left" || mode == "sst-left")
+        solved = solveShip(g, M_PI, mode == "sst-left", run);
     else { std::fprintf(stderr, "grid_ompl: unknown mode %s\n", mode.c_str()); return 2; }
-    const double seconds = std::chrono::duration<double>(
-        std::chrono::steady_clock::now() - began).count();
-    std::fprintf(stderr, "ompl_cpp stats: status=%s planning_seconds=%.6f\n",
-                 solved ? "solved" : "unsolved", seconds);
     return solved ? 0 : 3;
 }

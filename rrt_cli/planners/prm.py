@@ -218,10 +218,13 @@ def plan_with_roadmap(si: GeometricSpaceInformation, pdef: ProblemDefinition,
             0, 1, time.perf_counter() - began), NO_GOAL_CONFIGURATION)
     roadmap.add_vertex(goal, neighbors=1)
 
+    answers = None
+
     def result(status: PlanStatus, path: list[int] | None, iterations: int, message=""):
         trajectory = () if path is None else tuple(roadmap.points(path))
+        first = None if answers is None or answers.found_at is None else answers.found_at - began
         return PlanResult(status, si.system, trajectory, (), roadmap.edge_states(), PlanStats(
-            iterations, len(roadmap), time.perf_counter() - began), message)
+            iterations, len(roadmap), time.perf_counter() - began, first), message)
 
     if pdef.goal.reached(pdef.start):
         return result(PlanStatus.SOLVED, [START], 0)
@@ -251,6 +254,8 @@ class _Answers:
                  min_vertices: int):
         self.roadmap, self.stop, self.refinement = roadmap, stop, refinement
         self.solution: list[int] | None = None
+        self.found_at: float | None = None
+        """perf_counter() at the first answer (the roadmap may grow on for a shorter one)."""
         self.next_query, self.first_try = 0, min_vertices
 
     def final(self) -> bool:
@@ -266,6 +271,7 @@ class _Answers:
                     # Connected only through edges not yet checked: grow before retrying.
                     self.first_try = math.ceil(len(roadmap) * LAZY_RETRY_GROWTH)
                 return False
+            self.found_at = time.perf_counter()
             self.next_query = math.ceil(len(roadmap) * refinement.growth)
             # Final if no growth is asked for, if it is the straight line (a single
             # edge: nothing is shorter), or if growing passes the cap.

@@ -112,6 +112,20 @@ def test_the_table_gives_medians_at_each_checkpoint_and_ratios_to_ompl():
     assert cells(table, "OMPL RRT*")[-1] == "3.12×"
 
 
+def test_the_table_compares_with_ompl_in_cpp_when_it_ran():
+    ours = [optimizing("rrtstar", "p", s, "0.5:4 5:2") for s in (1, 2, 3)]
+    python = [optimizing("ompl-rrtstar", "p", s, "0.1:8") for s in (1, 2, 3)]
+    cpp = [optimizing("ompl-cpp-rrtstar", "p", s, "0.25:5 2:1") for s in (1, 2, 3)]
+    assert not any("C++" in line for line in convergence.convergence_table(ours + python, (1.0,)))
+    table = convergence.convergence_table(ours + python + cpp, (1.0, 10.0))
+    assert [cell.strip() for cell in table[0].split("|")[11:14]] == [
+        "vs OMPL C++ at 1 s", "vs OMPL C++ at 10 s", "First solution vs OMPL C++"]
+    # Ours 4 and 2 against C++'s 5 and 1; first solutions 0.5 s against 0.25 s.
+    assert cells(table, "rrtstar (ours)")[7:] == ["0.50×", "0.25×", "5.00×",
+                                                  "0.80×", "2.00×", "2.00×"]
+    assert cells(table, "OMPL C++ RRT*")[2] == "OMPL C++ RRT*"
+
+
 def test_an_unsolved_majority_has_no_median():
     runs = [optimizing("rrtstar", "p", 1, "0.5:3"), optimizing("rrtstar", "p", 2, ""),
             optimizing("rrtstar", "p", 3, "")]
@@ -144,6 +158,11 @@ def test_the_preset_skips_what_it_cannot_run_with_one_line_each():
     chosen = optimal.optimal_planners(preset, True, said.append)
     assert len(said) == 3 and all(line.endswith("skipped") for line in said)
     assert [line.split(":")[2].strip() for line in said] == ["nosuch", "rrt", "ompl-sst"]
+    cpp = optimal._ompl_cpp_choice("ompl-cpp-sst", said.append)
+    if cpp is not None:  # the C++ programs build here
+        assert cpp.vehicles == {Vehicle.SPACESHIP, Vehicle.LEFT_SPACESHIP}
+        assert cpp.systems == set(catalog.KINODYNAMIC_SYSTEMS)
+        assert cpp.command(None, 1, 2.0)[2:4] == ["benchmarks.ompl_cpp_planner", "-planner"]
     if catalog.ompl_installed():
         assert [(p.id, p.optimize) for p in chosen] == [("ompl-rrtstar", True)]
         assert chosen[0].command(Vehicle.POINT, 1, 1.0)[-1] == "-optimize"
@@ -184,6 +203,26 @@ def test_the_smoke_preset_runs_ompl_rrtstar_end_to_end(tmp_path):
         assert db.execute("SELECT COUNT(*) FROM progress").fetchone()[0] > 2
     assert 'id="convergence-point-1-median-point-ompl-rrtstar-course-simple-0"' in (
         out / "report.html").read_text()
+
+
+@pytest.mark.slow
+def test_the_smoke_preset_runs_ompl_in_cpp_end_to_end(tmp_path):
+    from benchmarks.cli import main
+    from benchmarks.ompl_cpp_programs import binary
+    if binary("grid_ompl") is None or binary("family_ompl") is None:
+        pytest.skip("no g++ or OMPL headers (apt-get install libompl-dev)")
+    out = tmp_path / "out"
+    assert main(["--preset", "optimal-smoke", "--planners", "ompl-cpp-rrtstar",
+                 "ompl-cpp-informed", "--seeds", "2", "--time", "1", "--no-generate",
+                 "--workers", "1", "--out", str(out)]) == 0
+    rows = read_csv(out / "runs.csv")
+    assert len(rows) == 8 and {r.implementation for r in rows} == {"ompl-cpp"}
+    assert {r.problem for r in rows} == {"course-simple-0", "arm2-pair1"}
+    assert all(r.solved and r.progress for r in rows)
+    assert all(parse_progress(f"x progress: {r.progress}")[-1][1] == pytest.approx(
+        r.best_cost, rel=1e-8) for r in rows)
+    report = (out / "report.md").read_text()
+    assert "| arm2     | arm2-pair1      | OMPL C++ Informed RRT*" in report
 
 
 def test_the_ompl_peer_refuses_optimize_for_a_planner_that_stops(tmp_path):

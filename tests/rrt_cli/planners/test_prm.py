@@ -114,6 +114,11 @@ def test_prmstar_refinement_only_ever_shortens_the_path(seed):
     assert path_length(refined.trajectory, math.dist) <= path_length(once.trajectory, math.dist)
     assert refined.stats.tree_nodes >= once.stats.tree_nodes
     assert refined.tree[:len(once.tree)] == once.tree
+    # -stats' first solution is the first answer's time, not the refined one's.
+    first, total = refined.stats.first_solution_seconds, refined.stats.planning_seconds
+    assert first is not None and 0 < first <= total
+    if refined.stats.tree_nodes > once.stats.tree_nodes:
+        assert first < total
 
 
 @pytest.mark.parametrize("seed", range(3))
