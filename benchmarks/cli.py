@@ -1,7 +1,8 @@
 """The one command: regenerate the suite, run the harness, write the reports.
 
-    python -m benchmarks [--preset smoke|quick|course|sweep|full|family|family-geometric|
-                                   family-quick|family-sweep] [--vehicles point spaceship left]
+    python -m benchmarks [--preset smoke|quick|course|sweep|full|grid-sweep|grid-optimize|
+                                   family|family-geometric|family-quick|family-sweep|
+                                   family-optimize] [--vehicles point spaceship left]
                          [--planners rrt ompl-rrt ...] [--problems PATTERN ...]
                          [--max-size N] [--seeds N] [--time S] [--workers 2]
                          [--out DIR] [--no-ompl] [--no-plots] [--report-only]
@@ -155,8 +156,11 @@ def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
         limit = args.time if args.time is not None else plan.time_limit
         for problem in presets.select_problems(plan):
             for planner in planners:
-                if plan.vehicle not in planner.vehicles:
+                if plan.vehicle not in planner.vehicles or (
+                        plan.planners and planner.id not in plan.planners):
                     continue
+                if preset.optimize:
+                    planner = dataclasses.replace(planner, optimize=True)
                 specs.extend(RunSpec(planner, plan.vehicle, problem, seed, limit)
                              for seed in range(1, seeds + 1))
     return specs
@@ -167,7 +171,8 @@ def build_family_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunS
     preset = family.FAMILY_PRESETS[args.preset]
     seeds = args.seeds if args.seeds is not None else preset.runs
     limit = args.time if args.time is not None else preset.time_limit
-    return [RunSpec(run.planner, None, run.problem, seed, limit)
+    return [RunSpec(dataclasses.replace(run.planner, optimize=preset.optimize), None,
+                    run.problem, seed, limit)
             for run in family.family_runs(preset, planners, tuple(args.problems or ()))
             for seed in range(1, seeds + 1)]
 
@@ -190,7 +195,8 @@ def _markdown(rows, meta: dict, shortest) -> str:
         from benchmarks.convergence import markdown_report as convergence_report
         return convergence_report(rows, meta, optimal.OPTIMAL_PRESETS[name].checkpoints,
                                   shortest)
-    return markdown_report(rows, meta, shortest=shortest)
+    return markdown_report(rows, meta, shortest=shortest,
+                           acceptance=name in presets.ACCEPTANCE_PRESETS)
 
 
 def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = True) -> Path:

@@ -11,6 +11,8 @@ which planners, how many runs, what time limit.
 * ``family-quick``: both, 3 runs, 10 s (tests, CI, a first look).
 * ``family-sweep``: every one of our family planners
   on every family problem (variants included), 20 seeds, 30 s: solved and validated %.
+* ``family-optimize``: sst, rrtstar and informed on every family problem they plan for,
+  with ``-optimize -time 5``, 20 seeds: the best answer at 5 s, validated.
 
 A planner a table names but the registry does not offer for the problem's system
 (not written yet, or refused) gets no runs and a "not available" line.
@@ -31,6 +33,7 @@ KINODYNAMIC_OURS = ("rrt", "kpiece", "rgrrt")
 KINODYNAMIC_OMPL = ("ompl-rrt", "ompl-kpiece1")
 BLOSSOM = ("blossom-b1", "blossom-b3", "blossom")
 GEOMETRIC = ("rrt", "rrtconnect", "prm", "prmstar", "ompl-rrt", "ompl-rrtconnect", "ompl-prm")
+OPTIMIZING = ("sst", "rrtstar", "informed")
 EVERY_PLANNER = ("*",)
 OUR_PLANNERS = ("(ours)",)
 
@@ -57,6 +60,8 @@ class FamilyPreset:
     """Seeds 1..runs of every planner on every problem."""
     time_limit: float
     """Seconds per run."""
+    optimize: bool = False
+    """Run every planner with ``-optimize`` (to the time limit; its best answer checked)."""
 
 
 CAR_PUBLISHED = (("OMPL RRT (seed 000, C++)", "100", "0.3467 ± 0.2157", "60.06 ± 16.00",
@@ -92,6 +97,9 @@ FAMILY_PRESETS = {
     "family-sweep": FamilyPreset("family-sweep", (
         FamilyTable("Every planner of ours on every family problem", ("*",), OUR_PLANNERS),),
         20, 30.0),
+    "family-optimize": FamilyPreset("family-optimize", (
+        FamilyTable("The optimizing planners with -optimize -time 5 on every family problem",
+                    ("*",), OPTIMIZING),), 20, 5.0, optimize=True),
 }
 
 

@@ -13,6 +13,13 @@
 * ``full``: every problem to 500x500 for the point vehicle (10 s limit), to
   200x200 for the spaceship (120 s) and to 50x50 for the left-only ship (30 s),
   10 seeds (5 for the ships).
+* ``grid-sweep``: issue 30's acceptance on the grid: the new planners (``NEW_PLANNERS``:
+  sst for both ships; rrtstar and informed for the point; rrt, rrtconnect, rrtstar and
+  informed for the Dubins car, radius 0.5) on every suite and course problem, 20 seeds,
+  30 s to a first solution, every answer validated (the Dubins car's with its turning
+  check). Narrow it with ``--seeds``, ``--max-size``, ``--problems``, ``--planners``.
+* ``grid-optimize``: the same problems with sst, rrtstar and informed run with
+  ``-optimize -time 5``: the best answer after 5 s, validated.
 
 How long each takes on 2 cores: docs/benchmarks.md.
 """
@@ -43,12 +50,32 @@ class VehiclePlan:
     """Problem names included whatever their size."""
     exclude: tuple[str, ...] = ()
     """Problem names (shell patterns) left out."""
+    planners: tuple[str, ...] = ()
+    """Only these planners (harness ids) on this vehicle; empty: every one that plans for it."""
 
 
 @dataclass(frozen=True)
 class Preset:
     name: str
     plans: tuple[VehiclePlan, ...]
+    optimize: bool = False
+    """Run the optimizing planners with ``-optimize`` (to the time limit, then check the
+    best answer); the others stop at their first solution."""
+
+
+NEW_PLANNERS = {Vehicle.POINT: ("rrtstar", "informed"),
+                Vehicle.DUBINS: ("rrt", "rrtconnect", "rrtstar", "informed"),
+                Vehicle.SPACESHIP: ("sst",), Vehicle.LEFT_SPACESHIP: ("sst",)}
+"""Issue 30's planners per grid vehicle: what ``grid-sweep`` runs."""
+OPTIMIZING = ("sst", "rrtstar", "informed")
+
+
+def _new_planners(time_limit: float, seeds: int, optimizing_only: bool = False
+                  ) -> tuple[VehiclePlan, ...]:
+    """Every problem of the suite and the course for each vehicle's new planners."""
+    return tuple(VehiclePlan(vehicle, time_limit, 500, seeds, planners=tuple(
+        p for p in planners if not optimizing_only or p in OPTIMIZING))
+        for vehicle, planners in NEW_PLANNERS.items())
 
 
 PRESETS = {
@@ -79,7 +106,14 @@ PRESETS = {
         VehiclePlan(Vehicle.SPACESHIP, 120.0, 200, 5),
         VehiclePlan(Vehicle.LEFT_SPACESHIP, 30.0, 50, 5),
     )),
+    "grid-sweep": Preset("grid-sweep", _new_planners(30.0, 20)),
+    "grid-optimize": Preset("grid-optimize", _new_planners(5.0, 20, optimizing_only=True),
+                            optimize=True),
 }
+
+
+ACCEPTANCE_PRESETS = ("grid-sweep", "grid-optimize")
+"""Presets whose report leads with solved and validated counts per problem group."""
 
 
 def problem_size(path: Path) -> int:

@@ -32,9 +32,10 @@ from planning_core.vehicles import Vehicle
 
 MIN_RUNS = 5
 """Runs (seeds) of each planner on each problem a target needs before the report judges it."""
-VEHICLE_ORDER = ("point", "spaceship", "left")
+VEHICLE_ORDER = ("point", "spaceship", "left", "dubins")
 VEHICLE_TITLES = {"point": "Point vehicle", "spaceship": "Spaceship (-grad)",
-                  "left": "Left-only spaceship (-grad -left)"}
+                  "left": "Left-only spaceship (-grad -left)",
+                  "dubins": "Dubins car (-dubins, radius 0.5)"}
 
 
 @dataclass(frozen=True)
@@ -435,6 +436,42 @@ def path_quality_table(rows: Sequence[RunRow], shortest: Mapping[str, float]) ->
     return markdown_table(header, body, "lr" + "r" * len(names))
 
 
+ACCEPTANCE_NOTE = ("Every answer checked by the validator's own checks (the Dubins car's "
+                   "with its turning check); a rejected answer counts as unsolved and in "
+                   "\"Invalid\". First solution: the planner's clock (with -optimize, when "
+                   "its first answer came).")
+
+
+def problem_group(row: RunRow) -> str:
+    """The course maps, the suite up to 200 cells a side, or the 500-cell maps."""
+    if row.problem.startswith("course-"):
+        return "course"
+    return "suite 500" if max(row.width, row.height) >= 500 else "suite 10-200"
+
+
+def acceptance_table(rows: Sequence[RunRow]) -> list[str]:
+    """Solved and validated out of the runs per vehicle, planner and problem group, the
+    invalid answers counted apart and the problems below 100 % named."""
+    groups: dict[tuple, list[RunRow]] = {}
+    for row in rows:
+        groups.setdefault((row.vehicle, row.planner, problem_group(row)), []).append(row)
+    body = []
+    for (vehicle, planner, kind), runs in sorted(groups.items()):
+        by_problem = group(runs, "problem")
+        missed = ", ".join(f"{p} {sum(r.solved for r in mine)}/{len(mine)}"
+                           for (p,), mine in sorted(by_problem.items())
+                           if not all(r.solved for r in mine))
+        firsts = [r.first_solution_seconds for r in runs if r.solved
+                  and r.first_solution_seconds is not None]
+        body.append((vehicle, planner, kind, str(len(by_problem)),
+                     f"{sum(r.solved for r in runs)}/{len(runs)}",
+                     str(sum(r.status == "invalid" for r in runs)),
+                     _fmt(max(firsts) if firsts else None), missed or "-"))
+    return markdown_table(("Vehicle", "Planner", "Problems", "Maps", "Solved and valid",
+                           "Invalid", "Slowest first solution (s)", "Below 100 %"),
+                          body, "lllrrrrl")
+
+
 def failures_table(rows: Sequence[RunRow], limit: int = 50) -> list[str]:
     """The first ``limit`` runs that failed for another reason than a limit."""
     failed = [r for r in rows if r.status in ("invalid", "crashed", "killed", "bad_input")]
@@ -445,7 +482,8 @@ def failures_table(rows: Sequence[RunRow], limit: int = 50) -> list[str]:
 
 
 def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: bool = True,
-                    shortest: Mapping[str, float] | None = None) -> str:
+                    shortest: Mapping[str, float] | None = None,
+                    acceptance: bool = False) -> str:
     """The whole report: header, targets, a summary table per vehicle, the point
     vehicle's path quality (with ``shortest``, the shortest path length per
     problem), per-problem tables."""
@@ -461,6 +499,8 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str], per_problem: b
             "problems and seeds (below 1 is faster); \"process\" = wall time of the whole "
             "planner process. A solution the validator rejects counts as unsolved.", ""]
     vehicles = [v for v in VEHICLE_ORDER if any(r.vehicle == v for r in rows)]
+    if acceptance:
+        out += ["## Solved and validated", "", ACCEPTANCE_NOTE, ""] + acceptance_table(rows) + [""]
     out += ["## Targets", "", TARGETS_NOTE, ""] + targets_table(rows, shortest) + [""]
     for vehicle in vehicles:
         problems = {r.problem for r in rows if r.vehicle == vehicle}

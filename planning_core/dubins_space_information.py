@@ -138,5 +138,26 @@ class DubinsSpaceInformation:
         return (state[0], state[1], mod2pi(state[2] + math.pi))
 
     def frontier(self) -> Any:
-        """None: a frontier's targets are positions, and a pose needs a heading."""
-        return None
+        """The grid's frontier of the nodes' positions, its targets given a uniform
+        heading as every target of the car's is (:class:`PoseFrontier`)."""
+        return PoseFrontier(self.world.frontier(), self._heading)
+
+
+class PoseFrontier:
+    """A grid frontier (:class:`~planning_core.worlds.grid_frontier.FrontierCells`) for
+    poses: a node covers its position's cell, a target is a frontier point with a
+    uniform heading."""
+
+    def __init__(self, cells: Any, heading: Callable[[random.Random], float]) -> None:
+        self.cells = cells
+        self.heading = heading
+
+    def __len__(self) -> int:
+        return len(self.cells)
+
+    def cover(self, state: Sequence[float]) -> None:
+        self.cells.cover(state)
+
+    def sample(self, rng: random.Random) -> tuple[float, float, float]:
+        x, y = self.cells.sample(rng)
+        return (x, y, self.heading(rng))

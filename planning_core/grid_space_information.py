@@ -216,6 +216,10 @@ class GridControlSpaceInformation:
         edge. No ``rng``."""
         return self.world.printable_point(goal.point)
 
+    def frontier(self) -> Any:
+        """An empty frontier of the map's free cells (a node covers its position's)."""
+        return self.world.frontier()
+
     def new_nearest(self) -> PositionNearest:
         """An empty nearest-node index (a quadtree over the map, by position)."""
         return PositionNearest(self.world.width, self.world.height)

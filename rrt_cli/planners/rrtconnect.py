@@ -71,7 +71,8 @@ class RRTConnectParams:
     as OMPL's, faster in rigid2-scene3's slot: docs/planners-geometric-family.md)."""
     frontier_targets: float = 0.9
     """Share of the random targets drawn from the trees' frontier (free cells with
-    no node beside covered ones, where the world offers it); 0 gives the published RRT-Connect."""
+    no node beside covered ones, where the world offers it; not for a directed system,
+    the Dubins car); 0 gives the published RRT-Connect."""
     def __post_init__(self):
         if not 0.0 <= self.frontier_targets <= 1.0:
             raise ValueError("frontier_targets must be in [0, 1]")
@@ -205,7 +206,11 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
     if si.certainly_unreachable(start, pdef.goal, stop.time_is_up):
         return result(PlanStatus.UNREACHABLE, (), 0,
                       "no chain of free cells joins the start and the goal")
-    frontier = si.frontier() if params.frontier_targets > 0.0 else None
+    # A directed system's trees (the Dubins car's) meet only at a pose both reach:
+    # frontier targets, beside each tree's own nodes, do not draw them together
+    # (space-1, radius 2, seeds 1-5: 2 solved in 20 s with them, 4 without).
+    frontier = (si.frontier() if params.frontier_targets > 0.0 and goal_tree.reverse is None
+                else None)
     if frontier is not None:
         frontier.cover(start)
         frontier.cover(goal)

@@ -58,10 +58,15 @@ class SSTParams:
     pruning_radius: Optional[float] = None
     """A witness's region (at most one active node in it); None: the space
     information's (the ships: 0.25 map units; the family: 0.5 %)."""
+    frontier_targets: float = 0.9
+    """Until the first solution, the share of targets drawn from the tree's frontier
+    where the world offers one (the grid: free cells without a node beside cells with
+    one, as RRT*'s); after it none (the paper's draws). 0: OMPL's draws throughout."""
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.goal_bias <= 1.0:
-            raise ValueError("goal_bias must be in [0, 1]")
+        for name in ("goal_bias", "frontier_targets"):
+            if not 0.0 <= getattr(self, name) <= 1.0:
+                raise ValueError(f"{name} must be in [0, 1]")
         for name in ("selection_radius", "pruning_radius"):
             value = getattr(self, name)
             if value is not None and not value >= 0.0:
@@ -101,6 +106,12 @@ class _Search:
         """Each witness's representative (-1: none yet)."""
         self.best: Optional[int] = None
         self.iterations = 0
+        self.frontier_share = params.frontier_targets
+        make_frontier = getattr(si, "frontier", None)
+        self.frontier = (make_frontier() if make_frontier is not None
+                         and self.frontier_share > 0.0 else None)
+        if self.frontier is not None:
+            self.frontier.cover(start)
 
     def select(self, target: Any) -> int:
         """The cheapest active node within the selection radius (ties: the nearer),
@@ -122,13 +133,9 @@ class _Search:
 
     def iterate(self) -> Optional[int]:
         """One iteration; a goal node cheaper than the best so far, or None."""
-        si, rng = self.si, self.rng
         self.iterations += 1
-        if uniform(rng) < self.goal_bias:
-            target = si.goal_target(self.goal, rng)
-        else:
-            target = si.sample_target(rng)
-        node = self.select(target)
+        node = self.select(self.target())
+        si, rng = self.si, self.rng
         motion = si.random_motion(self.tree.states[node], rng)
         if motion is None:
             return None
@@ -148,7 +155,20 @@ class _Search:
                 return node if best is None or cost < self.costs[best] else None
         return None
 
+    def target(self) -> Any:
+        """The goal (``goal_bias``); until the first solution, else mostly a frontier
+        point (``frontier_targets``); else a uniform target."""
+        si, rng = self.si, self.rng
+        if uniform(rng) < self.goal_bias:
+            return si.goal_target(self.goal, rng)
+        frontier = self.frontier
+        if frontier and self.best is None and uniform(rng) < self.frontier_share:
+            return frontier.sample(rng)
+        return si.sample_target(rng)
+
     def add(self, parent: int, state: Any, control: Any, cost: float) -> int:
+        if self.frontier is not None and self.best is None:
+            self.frontier.cover(state)
         node = self.tree.add(parent, state, control)
         self.children[parent] += 1
         self.costs.append(cost)

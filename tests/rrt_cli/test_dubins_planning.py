@@ -216,3 +216,19 @@ def test_optimizing_planners_answer_valid_dubins_paths_that_cost_no_more(monkeyp
     assert costs == sorted(costs, reverse=True) and stated == pytest.approx(costs[-1])
     # The validator measures the printed chords, the planner the arcs they sample.
     assert stated * (1 - 1e-3) <= report.cost <= stated
+
+
+def test_the_frontier_gives_poses_in_the_cells_beside_the_nodes():
+    """The car's frontier is the grid's over the nodes' positions, its targets poses
+    with a heading (what RRT-Connect and RRT* draw most targets from)."""
+    setup = grid_setup(parse_problem("5\n5\n_____\n_____\n__#__\n_____\n_____\n1.5\n2.5\n4.5\n4.5\n"),
+                       Vehicle.DUBINS)
+    frontier = setup.si.frontier()
+    frontier.cover((1.5, 2.5))
+    frontier.cover((2.5, 3.5, 1.0))
+    rng = random.Random(1)
+    poses = [frontier.sample(rng) for _ in range(200)]
+    assert {(int(x), int(y)) for x, y, _ in poses} == {
+        (0, 2), (1, 1), (1, 3), (2, 4), (3, 3)}  # (2, 2) is blocked; covered cells left out
+    assert all(0.0 <= heading < 2 * math.pi for _, _, heading in poses)
+    assert len({round(heading, 3) for _, _, heading in poses}) > 150

@@ -175,7 +175,7 @@ def test_a_walled_in_goal_ends_at_the_limit_with_no_path():
 
 
 @pytest.mark.parametrize("bad", [dict(goal_bias=1.5), dict(selection_radius=-1.0),
-                                 dict(pruning_radius=float("nan"))])
+                                 dict(pruning_radius=float("nan")), dict(frontier_targets=1.5)])
 def test_bad_params_are_rejected(bad):
     with pytest.raises(ValueError):
         sst.SSTParams(**bad)
@@ -204,3 +204,21 @@ def test_the_best_path_stays_in_the_printed_tree_when_its_nodes_turn_inactive():
     assert childless, "the old answer's last node has children: nothing to prune"
     search.accept(0)  # another answer: the old path's inactive leaves are pruned
     assert not any(search.in_tree[k] for k in childless)
+
+
+def test_frontier_targets_on_the_grid_until_the_first_solution():
+    """Before a solution the targets are frontier points (free cells beside a node's);
+    after it none are; the family's worlds offer no frontier."""
+    setup = _setup(GAP_WALL, Vehicle.SPACESHIP)
+    search = sst._Search(setup.si, setup.pdef, random.Random(1),
+                         sst.SSTParams(goal_bias=0.0, frontier_targets=1.0))
+    start_cell = (int(setup.pdef.start[0]), int(setup.pdef.start[1]))
+    cells = {(int(x), int(y)) for x, y in (search.target() for _ in range(50))}
+    assert cells == {(start_cell[0] + dx, start_cell[1] + dy)
+                     for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))}
+    search.best = 0
+    far = [t for t in (search.target() for _ in range(200))
+           if abs(int(t[0]) - start_cell[0]) + abs(int(t[1]) - start_cell[1]) > 1]
+    assert far  # uniform over the map again
+    family = _setup(SMALL["pendulum"])
+    assert sst._Search(family.si, family.pdef, random.Random(1), sst.SSTParams()).frontier is None

@@ -1,0 +1,85 @@
+"""Issue 30's acceptance sweeps: ``grid-sweep`` (the new planners on every grid vehicle
+they plan for), ``grid-optimize`` and ``family-optimize`` (the optimizing planners with
+``-optimize``), run end to end through the harness, every answer validated."""
+
+import pytest
+
+from benchmarks import presets
+from benchmarks.cli import main
+from benchmarks.rows import read_csv
+from planning_core.vehicles import Vehicle
+from rrt_cli.planners import PLANNERS
+from validator.checks import validate_output
+
+FAST = ["--no-ompl", "--no-plots", "--no-generate", "--workers", "1"]
+
+
+def _rows(tmp_path, *argv: str):
+    out = tmp_path / "out"
+    assert main([*argv, *FAST, "--out", str(out)]) == 0
+    return read_csv(out / "runs.csv"), (out / "report.md").read_text()
+
+
+def test_the_grid_sweep_runs_every_new_planner_on_each_vehicle_and_validates(tmp_path):
+    rows, report = _rows(tmp_path, "--preset", "grid-sweep", "--problems", "course-simple-0",
+                         "--seeds", "1", "--time", "10")
+    ran = {(row.vehicle, row.planner) for row in rows}
+    assert ran == {(vehicle.value, planner)
+                   for vehicle, planners in presets.NEW_PLANNERS.items() for planner in planners}
+    assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
+    assert "## Solved and validated" in report and "| dubins " in report
+
+
+def test_grid_sweep_planners_are_the_registrys_for_their_vehicle():
+    for vehicle, planners in presets.NEW_PLANNERS.items():
+        for planner in planners:
+            assert PLANNERS[planner].plans_for(vehicle.system), (vehicle, planner)
+
+
+def test_grid_optimize_runs_only_optimizing_planners_with_optimize(tmp_path):
+    rows, report = _rows(tmp_path, "--preset", "grid-optimize", "--problems",
+                         "course-simple-0", "--seeds", "1", "--time", "1")
+    assert {row.planner for row in rows} == {"sst", "rrtstar", "informed"}
+    assert {row.vehicle for row in rows} == {v.value for v in presets.NEW_PLANNERS}
+    assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
+    # -optimize runs to the limit: the planning clock is past the first solution's.
+    assert all(row.planning_seconds >= 0.9 for row in rows)
+
+
+def test_family_optimize_runs_the_optimizing_planners_on_what_they_plan_for(tmp_path):
+    rows, _ = _rows(tmp_path, "--preset", "family-optimize", "--problems", "arm2-pair1",
+                    "pendulum-t10", "--seeds", "1", "--time", "1")
+    assert {(row.problem, row.planner) for row in rows} == {
+        ("arm2-pair1", "rrtstar"), ("arm2-pair1", "informed"), ("pendulum-t10", "sst")}
+    assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
+
+
+def test_the_harness_rejects_a_dubins_answer_that_turns_too_tightly():
+    """The grid sweep's Dubins rows are judged with the turning check: a right-angle
+    corner, fine for the point, fails for the car."""
+    from planning_core.problem_text import parse_problem
+    problem = parse_problem("4\n4\n____\n____\n____\n____\n0.5\n0.5\n2.5\n2.5\n")
+    corner = [(0.5 + 0.05 * k, 0.5) for k in range(41)] + [
+        (2.5, 0.5 + 0.05 * k) for k in range(1, 41)]
+    text = f"{len(corner)}\n" + "".join(f"{x!r} {y!r}\n" for x, y in corner) + "0\n"
+    assert validate_output(problem, Vehicle.POINT, text).valid
+    assert not validate_output(problem, Vehicle.DUBINS, text).valid
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("preset", ["grid-sweep", "grid-optimize"])
+def test_the_acceptance_sweep_on_the_course_maps(tmp_path, preset):
+    """Issue 30's acceptance on the course maps: every new planner, 20 seeds, no answer
+    invalid and every run solved, but the left-only ship's SST, which misses a map now
+    and then (docs/optimal-planning.md#acceptance-sweeps): at least 90 % of its runs.
+    Hours with the generated suites: run those by the command."""
+    rows, _ = _rows(tmp_path, "--preset", preset, "--problems", "course-*")
+    assert len(rows) == 5 * 20 * sum(
+        len([p for p in planners if preset == "grid-sweep" or p in presets.OPTIMIZING])
+        for planners in presets.NEW_PLANNERS.values())
+    assert not [r for r in rows if r.status in ("invalid", "crashed", "killed")]
+    left = [r for r in rows if (r.vehicle, r.planner) == ("left", "sst")]
+    assert sum(r.solved for r in left) >= 0.9 * len(left)
+    assert all(row.solved for row in rows if row not in left), sorted(
+        (r.problem, r.vehicle, r.planner, r.seed, r.status) for r in rows
+        if not r.solved and r not in left)
