@@ -69,17 +69,22 @@ def test_the_harness_rejects_a_dubins_answer_that_turns_too_tightly():
 @pytest.mark.slow
 @pytest.mark.parametrize("preset", ["grid-sweep", "grid-optimize"])
 def test_the_acceptance_sweep_on_the_course_maps(tmp_path, preset):
-    """Issue 30's acceptance on the course maps: every new planner, 20 seeds, no answer
-    invalid and every run solved, but the left-only ship's SST, which misses a map now
-    and then (docs/optimal-planning.md#acceptance-sweeps): at least 90 % of its runs.
-    Hours with the generated suites: run those by the command."""
-    rows, _ = _rows(tmp_path, "--preset", preset, "--problems", "course-*")
-    assert len(rows) == 5 * 20 * sum(
+    """Issue 30's acceptance presets on the course maps, 2 seeds (the 20-seed runs are
+    the commands of docs/optimal-planning.md#acceptance-sweeps: 800 and 600 runs, past
+    this suite's budget): no answer invalid and every run solved, but the left-only
+    ship's SST, which misses a map now and then within its limit (here 2 s with
+    -optimize, 30 s without): at least half."""
+    out = tmp_path / "out"
+    limit = ["--time", "2"] if preset == "grid-optimize" else []  # -optimize runs it all
+    assert main(["--preset", preset, "--problems", "course-*", "--seeds", "2", *limit,
+                 *FAST[:-2], "--workers", "2", "--out", str(out)]) == 0
+    rows = read_csv(out / "runs.csv")
+    assert len(rows) == 5 * 2 * sum(
         len([p for p in planners if preset == "grid-sweep" or p in presets.OPTIMIZING])
         for planners in presets.NEW_PLANNERS.values())
     assert not [r for r in rows if r.status in ("invalid", "crashed", "killed")]
     left = [r for r in rows if (r.vehicle, r.planner) == ("left", "sst")]
-    assert sum(r.solved for r in left) >= 0.9 * len(left)
+    assert sum(r.solved for r in left) >= 0.5 * len(left)
     assert all(row.solved for row in rows if row not in left), sorted(
         (r.problem, r.vehicle, r.planner, r.seed, r.status) for r in rows
         if not r.solved and r not in left)
