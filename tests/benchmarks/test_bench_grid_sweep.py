@@ -14,9 +14,9 @@ from validator.checks import validate_output
 FAST = ["--no-ompl", "--no-plots", "--no-generate", "--workers", "1"]
 
 
-def _rows(tmp_path, *argv: str):
+def _rows(tmp_path, *argv: str, workers: int = 1):
     out = tmp_path / "out"
-    assert main([*argv, *FAST, "--out", str(out)]) == 0
+    assert main([*argv, *FAST[:-1], str(workers), "--out", str(out)]) == 0
     return read_csv(out / "runs.csv"), (out / "report.md").read_text()
 
 
@@ -38,7 +38,7 @@ def test_grid_sweep_planners_are_the_registrys_for_their_vehicle():
 
 def test_grid_optimize_runs_only_optimizing_planners_with_optimize(tmp_path):
     rows, report = _rows(tmp_path, "--preset", "grid-optimize", "--problems",
-                         "course-simple-0", "--seeds", "1", "--time", "1")
+                         "course-simple-0", "--seeds", "1", "--time", "1", workers=2)
     assert {row.planner for row in rows} == {"sst", "rrtstar", "informed"}
     assert {row.vehicle for row in rows} == {v.value for v in presets.NEW_PLANNERS}
     assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
@@ -48,7 +48,7 @@ def test_grid_optimize_runs_only_optimizing_planners_with_optimize(tmp_path):
 
 def test_family_optimize_runs_the_optimizing_planners_on_what_they_plan_for(tmp_path):
     rows, _ = _rows(tmp_path, "--preset", "family-optimize", "--problems", "arm2-pair1",
-                    "pendulum-t10", "--seeds", "1", "--time", "1")
+                    "pendulum-t10", "--seeds", "1", "--time", "1", workers=2)
     assert {(row.problem, row.planner) for row in rows} == {
         ("arm2-pair1", "rrtstar"), ("arm2-pair1", "informed"), ("pendulum-t10", "sst")}
     assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
