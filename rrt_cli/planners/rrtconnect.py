@@ -208,7 +208,7 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
                       "no chain of free cells joins the start and the goal")
     # A directed system's trees (the Dubins car's) meet only at a pose both reach:
     # frontier targets, beside each tree's own nodes, do not draw them together
-    # (space-1, radius 2, seeds 1-5: 2 solved in 20 s with them, 4 without).
+    # (measured: docs/dubins.md, "Targets").
     frontier = (si.frontier() if params.frontier_targets > 0.0 and goal_tree.reverse is None
                 else None)
     if frontier is not None:
