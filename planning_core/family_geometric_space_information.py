@@ -155,7 +155,3 @@ class FamilyGeometricSpaceInformation(FamilySpaceInformation):
                         return middle
             return uniform()
         return draw
-
-    def frontier(self):
-        """No frontier of cells in a continuous space."""
-        return None

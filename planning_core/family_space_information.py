@@ -43,6 +43,10 @@ class FamilySpaceInformation:
         """A uniform state of the system's space (valid or not)."""
         return self._sample(rng)
 
+    def frontier(self) -> None:
+        """No frontier of cells in a continuous space."""
+        return None
+
     def goal_target(self, goal: Any, rng: random.Random) -> State:
         """The goal's values; the variables it does not name from a uniform sample
         (one draw per variable; none when the goal names every variable)."""

@@ -131,6 +131,9 @@ class ControlSpaceInformation(Protocol):
     def goal_target(self, goal: Goal, rng: random.Random) -> State:
         """A goal-biased target, as :meth:`sample_target`'s."""
 
+    def frontier(self) -> Any:
+        """An empty frontier of cells (SST's targets until its first solution), or None."""
+
     def new_nearest(self) -> NearestIndex: ...
 
     def closeness(self, a: Sequence[float], b: Sequence[float]) -> float:

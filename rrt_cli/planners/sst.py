@@ -107,9 +107,7 @@ class _Search:
         self.best: Optional[int] = None
         self.iterations = 0
         self.frontier_share = params.frontier_targets
-        make_frontier = getattr(si, "frontier", None)
-        self.frontier = (make_frontier() if make_frontier is not None
-                         and self.frontier_share > 0.0 else None)
+        self.frontier = si.frontier() if self.frontier_share > 0.0 else None
         if self.frontier is not None:
             self.frontier.cover(start)
 
