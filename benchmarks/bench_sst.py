@@ -12,7 +12,6 @@ with the validator's own checks. Prints a Markdown table.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import random
 import statistics
@@ -57,7 +56,7 @@ def run(job: list) -> dict:
     (path, vehicle), seed, limit, optimize = job
     problem = parse_any_problem((ROOT / "benchmarks" / "problems" / path).read_text())
     setup = kinoplan_setup(problem) if vehicle is None else grid_setup(problem, vehicle)
-    pdef = dataclasses.replace(setup.pdef, objective=Objective()) if optimize else setup.pdef
+    pdef = setup.pdef.with_objective(Objective()) if optimize else setup.pdef
     result = sst.solve(setup.si, pdef, StopCondition(time_limit=limit), random.Random(seed))
     valid = result.solved and validate_plan(setup, format_plan(result.trajectory,
                                                                result.tree)).valid
