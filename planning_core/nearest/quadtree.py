@@ -18,24 +18,49 @@ if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-sta
 
 class _Node:
     """A box of the quadtree: a leaf holds point indices, an inner node four children
-    (0 bottom-left, 1 bottom-right, 2 top-left, 3 top-right of its centre)."""
+    (0 bottom-left, 1 bottom-right, 2 top-left, 3 top-right of its centre).
+    ``bx0``..``by1`` bound the points inserted under it (empty: +inf..-inf), far
+    tighter than the box where a tree fills a corridor, so queries prune by them."""
 
-    __slots__ = ("x0", "y0", "x1", "y1", "cx", "cy", "children", "indices")
+    __slots__ = ("x0", "y0", "x1", "y1", "cx", "cy", "bx0", "by0", "bx1", "by1",
+                 "children", "indices")
 
     def __init__(self, x0: float, y0: float, x1: float, y1: float) -> None:
         self.x0, self.y0, self.x1, self.y1 = x0, y0, x1, y1
         self.cx, self.cy = (x0 + x1) * 0.5, (y0 + y1) * 0.5
+        self.bx0, self.by0, self.bx1, self.by1 = math.inf, math.inf, -math.inf, -math.inf
         self.children: list[_Node] | None = None
         self.indices: list[int] = []
 
     def quadrant(self, x: float, y: float) -> int:
         return (1 if x >= self.cx else 0) + (2 if y >= self.cy else 0)
 
+    def cover(self, x: float, y: float) -> None:
+        """Grow the points' bounds to hold (x, y)."""
+        if x < self.bx0:
+            self.bx0 = x
+        if x > self.bx1:
+            self.bx1 = x
+        if y < self.by0:
+            self.by0 = y
+        if y > self.by1:
+            self.by1 = y
 
-def _push(stack: list[_Node], top: int, node: _Node) -> int:
-    """Put ``node`` at ``stack[top]`` unless it is an empty leaf (nothing to find
-    there); the new top. The list only grows: no pop shrinks and regrows it."""
-    if node.children is None and not node.indices:
+
+def _gap2(node: _Node, x: float, y: float) -> float:
+    """Squared distance from (x, y) to the bounds of the node's points (0 inside;
+    a lower bound of the distance to each of them)."""
+    gx = node.bx0 - x if x < node.bx0 else (x - node.bx1 if x > node.bx1 else 0.0)
+    gy = node.by0 - y if y < node.by0 else (y - node.by1 if y > node.by1 else 0.0)
+    return gx * gx + gy * gy
+
+
+def _push(stack: list[_Node], top: int, node: _Node, x: float, y: float,
+          bound: float) -> int:
+    """Put ``node`` at ``stack[top]`` unless nothing there can be within ``bound``
+    (an empty leaf, or a box farther than that squared distance); the new top.
+    The list only grows: no pop shrinks and regrows it."""
+    if (node.children is None and not node.indices) or _gap2(node, x, y) > bound:
         return top
     if top == len(stack):
         stack.append(node)
@@ -66,6 +91,7 @@ class QuadtreeNearest:
         self.ys: list[float] = []
         self.leaf_capacity = leaf_capacity
         self.root = _Node(0.0, 0.0, float(width), float(height))
+        self._stack: list[_Node] = [self.root]  # nearest()'s, reused; only grows
 
     def __len__(self) -> int:
         return len(self.xs)
@@ -76,9 +102,11 @@ class QuadtreeNearest:
         self.xs.append(x)
         self.ys.append(y)
         node = self.root
+        node.cover(x, y)
         children = node.children
         while children is not None:
             node = children[node.quadrant(x, y)]
+            node.cover(x, y)
             children = node.children
         node.indices.append(index)
         if len(node.indices) > self.leaf_capacity and node.x1 - node.x0 > _MIN_NODE_SIZE:
@@ -92,7 +120,9 @@ class QuadtreeNearest:
         node.children = children
         xs, ys = self.xs, self.ys
         for index in node.indices:
-            children[node.quadrant(xs[index], ys[index])].indices.append(index)
+            child = children[node.quadrant(xs[index], ys[index])]
+            child.indices.append(index)
+            child.cover(xs[index], ys[index])
         node.indices = []
         for child in children:
             # All points may land in one quadrant (duplicates, tight clusters).
@@ -108,10 +138,7 @@ class QuadtreeNearest:
         while top:
             top -= 1
             node = stack[top]
-            # Squared distance from the query to the node's box.
-            gx = node.x0 - x if x < node.x0 else (x - node.x1 if x > node.x1 else 0.0)
-            gy = node.y0 - y if y < node.y0 else (y - node.y1 if y > node.y1 else 0.0)
-            if gx * gx + gy * gy > bound:
+            if _gap2(node, x, y) > bound:
                 continue
             children = node.children
             if children is None:
@@ -120,18 +147,46 @@ class QuadtreeNearest:
                 continue
             # Push the far quadrants first so the query's own quadrant pops first.
             q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)  # node.quadrant, inline
-            top = _push(stack, top, children[3 - q])
-            top = _push(stack, top, children[q ^ 1])
-            top = _push(stack, top, children[q ^ 2])
-            top = _push(stack, top, children[q])
+            top = _push(stack, top, children[3 - q], x, y, bound)
+            top = _push(stack, top, children[q ^ 1], x, y, bound)
+            top = _push(stack, top, children[q ^ 2], x, y, bound)
+            top = _push(stack, top, children[q], x, y, bound)
 
     def nearest(self, x: float, y: float) -> int:
-        """Index of the point closest to (x, y); ties go to the earliest inserted."""
-        if not self.xs:
+        """Index of the point closest to (x, y); ties go to the earliest inserted.
+
+        The planners' hot query, so :meth:`_search` specialised: the leaves read
+        inline, a stack kept between queries, and a child pushed only if its box
+        is within the best distance found so far (:class:`LinearNearest` is the
+        reference it must equal)."""
+        xs, ys = self.xs, self.ys
+        if not xs:
             raise ValueError("nearest() on an empty structure")
-        best = _Nearest(self.xs, self.ys, x, y)
-        self._search(x, y, best)
-        return best.index
+        stack = self._stack
+        stack[0] = self.root
+        top = 1
+        best_d2, best_index = math.inf, -1
+        while top:
+            top -= 1
+            node = stack[top]
+            if _gap2(node, x, y) > best_d2:
+                continue
+            children = node.children
+            if children is None:
+                for index in node.indices:
+                    ddx = xs[index] - x
+                    ddy = ys[index] - y
+                    d2 = ddx * ddx + ddy * ddy
+                    if d2 < best_d2 or (d2 == best_d2 and index < best_index):
+                        best_d2, best_index = d2, index
+                continue
+            # Far quadrants pushed first so that the query's own pops first.
+            q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)
+            top = _push(stack, top, children[3 - q], x, y, best_d2)
+            top = _push(stack, top, children[q ^ 1], x, y, best_d2)
+            top = _push(stack, top, children[q ^ 2], x, y, best_d2)
+            top = _push(stack, top, children[q], x, y, best_d2)
+        return best_index
 
     def k_nearest(self, x: float, y: float, k: int) -> list[int]:
         """Indices of the ``k`` points closest to (x, y), nearest first.
@@ -188,27 +243,6 @@ class _Within(_Scan):
             if d2 <= limit:
                 pairs.append((d2, index))
         return limit
-
-
-class _Nearest(_Scan):
-    """The nearest point so far: its squared distance and index."""
-
-    def __init__(self, xs: list[float], ys: list[float], x: float, y: float) -> None:
-        self.xs, self.ys, self.x, self.y = xs, ys, x, y
-        self.d2 = math.inf
-        self.index = -1
-
-    def scan(self, indices: list[int]) -> float:
-        xs, ys, x, y = self.xs, self.ys, self.x, self.y
-        best_d2, best_index = self.d2, self.index
-        for index in indices:
-            ddx = xs[index] - x
-            ddy = ys[index] - y
-            d2 = ddx * ddx + ddy * ddy
-            if d2 < best_d2 or (d2 == best_d2 and index < best_index):
-                best_d2, best_index = d2, index
-        self.d2, self.index = best_d2, best_index
-        return best_d2
 
 
 class _KNearest(_Scan):

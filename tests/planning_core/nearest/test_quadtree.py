@@ -31,3 +31,19 @@ def test_matches_linear_scan(width, height, spread, duplicates):
 def test_empty_structure_raises():
     with pytest.raises(ValueError):
         QuadtreeNearest(5, 5).nearest(1.0, 1.0)
+
+
+@pytest.mark.parametrize("width,height,spread", [(10, 9, 1.0), (200, 20, 0.1), (4, 4, 1.0)])
+def test_same_index_as_linear_scan_ties_included(width, height, spread):
+    """nearest() is the fast version of LinearNearest's scan: the same index, ties
+    (points and queries on a 0.5 lattice, duplicates) to the earliest, while the
+    tree grows in a corridor-like strip where the points' bounds prune."""
+    rng = random.Random(width + 3 * height)
+    tree, scan = QuadtreeNearest(width, height, leaf_capacity=4), LinearNearest()
+    for i in range(2500):
+        x = round(rng.random() * width * spread * 2) / 2
+        y = round(rng.random() * height * spread * 2) / 2
+        tree.add(x, y)
+        scan.add(x, y)
+        qx, qy = round(rng.random() * width * 2) / 2, round(rng.random() * height * 2) / 2
+        assert tree.nearest(qx, qy) == scan.nearest(qx, qy)
