@@ -95,6 +95,27 @@ def test_report_has_seed_layout_not_available_lines_and_the_targets():
     assert "not judged: 3 runs (need 5)" in text
 
 
+def test_prmstar_first_solution_target_is_judged_per_problem_against_prm():
+    # prmstar's whole run (its refinement) is long; only its first answer's time counts.
+    rows = []
+    for seed in range(1, 6):
+        for problem, star_first in (("arm2-pair1", 0.0015), ("arm2-pair2", 0.0031)):
+            rows.append(replace(row("prm", problem, seed, 0.001, system="arm2"),
+                                first_solution_seconds=0.001))
+            rows.append(replace(row("prmstar", problem, seed, 9.0, system="arm2"),
+                                first_solution_seconds=star_first))
+    rows.append(replace(row("prmstar", "arm2-pair1", 6, 9.0, system="arm2"),
+                        first_solution_seconds=5.0))  # a seed prm did not run: left out
+    rows.append(replace(row("prmstar", "rigid2-scene1", 1, 9.0, system="rigid2"),
+                        first_solution_seconds=0.001))  # prm did not run it: no line
+    bound = "median time to the first solution at most 2× our prm's"
+    lines = {cells[0]: cells[1:] for cells in parse_rows(targets_table(rows)) if bound in cells[0]}
+    assert lines == {f"arm2-pair1: prmstar {bound}": ["1.50× (1.5 ms over 1 ms)", "yes"],
+                     f"arm2-pair2: prmstar {bound}": ["3.10× (3.1 ms over 1 ms)", "**no**"]}
+    few = {cells[0]: cells[1:] for cells in parse_rows(targets_table(rows, min_runs=6))}
+    assert few[f"arm2-pair2: prmstar {bound}"] == ["not judged: 5 runs (need 6)", "–"]
+
+
 def parse_rows(table: list[str]) -> list[list[str]]:
     """The body rows of a Markdown table, as cells."""
     return [[cell.strip() for cell in line.strip("|").split("|")] for line in table[2:]]
