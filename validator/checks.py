@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 from planning_core.costs import path_cost
 from planning_core.goal import GOAL_TOLERANCE
-from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
+from planning_core.plan_reader import PlanArrays, PlanRowError, compile_row_patterns, read_plan
 from planning_core.plan_rows import row_widths
 from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
@@ -118,6 +118,10 @@ class Limits:
 
 @dataclass(frozen=True)
 class CheckResult:
+    """What one check found. (Every dataclass here has a docstring: without one,
+    dataclasses makes it from the signature with inspect, a module the validator
+    need not import.)"""
+
     number: int                # its place in CHECKS (from 1), as in SPEC 3
     name: str                  # its name in CHECKS
     passed: bool
@@ -143,6 +147,9 @@ class CornerCut:
 
 @dataclass(frozen=True)
 class ValidationReport:
+    """The checks run on one answer, in order (the run stops at the first failure),
+    and what they measured."""
+
     system: object             # what was checked (planning_core.systems)
     strict: bool
     checks: list[CheckResult]
@@ -816,6 +823,12 @@ def validate_output(problem: Problem, vehicle: Vehicle | str, output_text: str,
     and the named vehicle (:func:`validate_plan` over its SpaceInformation)."""
     return validate_plan(grid_setup(problem, vehicle), output_text, strict,
                          limits, output_cap_exceeded)
+
+
+def prepare(setup: Setup) -> None:
+    """Do now what :func:`validate_plan` on ``setup`` would do first whatever the
+    answer: the validator calls it while the planner runs."""
+    compile_row_patterns(*row_widths(setup.system))
 
 
 def validate_plan(setup: Setup, output_text: str, strict: bool = False,
