@@ -368,7 +368,8 @@ class _Pump:
         self.cap_exceeded = False
         self.stderr = stderr
         self.to_write = memoryview(stdin_data)
-        self.stdin_fd, self.stdout_fd, self.stderr_fd = process.stdin, process.stdout, process.stderr
+        self.stdin_fd, self.stdout_fd = process.stdin, process.stdout
+        self.stderr_fd = process.stderr
         for fd in (self.stdin_fd, self.stdout_fd, self.stderr_fd):
             os.set_blocking(fd, False)
         self.selector = _Poller()
@@ -615,25 +616,41 @@ class _Containment:
 
 
 def _load_prctl() -> Callable[..., int] | None:
-    """libc's prctl (Linux), or None."""
+    """libc's prctl (Linux), or None. Made as ``ctypes.CDLL(None, use_errno=True).prctl``
+    with ``c_int`` arguments and result makes it, from ctypes' own C module:
+    ``import ctypes`` (its types, ``struct``) cost the validator 1.5-3 ms before it
+    could start the planner."""
     if not sys.platform.startswith("linux"):
         return None
     try:
-        import ctypes
-        prctl = ctypes.CDLL(None, use_errno=True).prctl
-    except (ImportError, OSError, AttributeError):
+        import _ctypes
+
+        class CInt(_ctypes._SimpleCData):  # ctypes.c_int
+            _type_ = "i"
+
+        class CULong(_ctypes._SimpleCData):  # ctypes.c_ulong
+            _type_ = "L"
+
+        class Libc:  # what a foreign function is looked up in: a CDLL's handle
+            _handle = _ctypes.dlopen(None, _ctypes.RTLD_LOCAL)
+
+        class Function(_ctypes.CFuncPtr):  # CDLL(..., use_errno=True)._FuncPtr
+            _flags_ = _ctypes.FUNCFLAG_CDECL | _ctypes.FUNCFLAG_USE_ERRNO
+            _restype_ = CInt
+
+        prctl = Function(("prctl", Libc))
+        prctl.argtypes = (CInt, CULong, CULong, CULong, CULong)
+    except (ImportError, OSError, AttributeError, TypeError):
         return None
-    prctl.argtypes = [ctypes.c_int] + [ctypes.c_ulong] * 4
-    prctl.restype = ctypes.c_int
     return prctl
 
 
 def _get_subreaper(prctl: Callable[..., int] | None) -> bool:
     if prctl is None:
         return False
-    import ctypes
-    value = ctypes.c_int(0)
-    if prctl(_PR_GET_CHILD_SUBREAPER, ctypes.addressof(value), 0, 0, 0) != 0:
+    import _ctypes
+    value = prctl.restype(0)  # a C int for prctl to write into
+    if prctl(_PR_GET_CHILD_SUBREAPER, _ctypes.addressof(value), 0, 0, 0) != 0:
         return False
     return bool(value.value)
 

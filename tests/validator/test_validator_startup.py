@@ -1,5 +1,6 @@
 """The validator's start-up savings: before the planner starts it imports neither
-subprocess (with threading and locale), selectors nor the checks and dataclasses;
+subprocess (with threading and locale), selectors, ctypes (the containment's prctl is
+made from its C module) nor the checks and dataclasses;
 inspect and copy are never imported (stand-ins, as for the planner); the usual
 command line needs no argparse."""
 
@@ -14,7 +15,7 @@ from validator_testlib import PROBLEMS, ROOT
 # the planner is forked, and at the end (atexit: exit_now runs it too).
 PROBE = """
 import atexit, os, sys
-NAMES = ("subprocess", "threading", "locale", "selectors", "dataclasses", "typing", "ast",
+NAMES = ("subprocess", "threading", "locale", "selectors", "ctypes", "dataclasses", "typing", "ast",
          "weakref", "argparse", "validator.checks", "planning_core.setups")
 def loaded():
     return ",".join(name for name in NAMES if name in sys.modules) or "-"
