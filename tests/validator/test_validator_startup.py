@@ -1,13 +1,15 @@
 """The validator's start-up savings: before the planner starts it imports neither
 subprocess (with threading and locale), selectors, ctypes (the containment's prctl is
-made from its C module) nor the checks and dataclasses;
-inspect and copy are never imported (stand-ins, as for the planner); the usual
-command line needs no argparse."""
+made from its C module), the checks nor dataclasses; inspect and copy are never
+imported (stand-ins, as for the planner), nor typing, nor argparse for the usual
+command line."""
 
 from __future__ import annotations
 
 import subprocess
 import sys
+
+import pytest
 
 from validator_testlib import PROBLEMS, ROOT
 
@@ -51,9 +53,11 @@ def test_the_planner_starts_before_the_heavy_imports():
     assert at_fork == ["-"]
 
 
-def test_the_validator_imports_neither_inspect_copy_nor_argparse():
-    status, _, at_exit = validator_loads("-noviz", "--", str(ROOT / "run.sh"), "-seed", "1")
+@pytest.mark.parametrize("flags", [[], ["-grad"]])
+def test_the_validator_imports_neither_inspect_copy_typing_nor_argparse(flags):
+    status, _, at_exit = validator_loads("-noviz", *flags, "--", str(ROOT / "run.sh"), *flags,
+                                         "-seed", "1")
     assert status == 0
     assert {"validator.checks", "planning_core.setups", "dataclasses"} <= set(at_exit)
-    assert not {"ast", "weakref", "argparse", "subprocess", "threading", "locale",
-                "selectors"} & set(at_exit)
+    assert not {"ast", "weakref", "typing", "argparse", "subprocess", "threading", "locale",
+                "selectors", "ctypes"} & set(at_exit)
