@@ -39,7 +39,7 @@ def defer_dataclasses_imports() -> None:
 
 def planner() -> None:
     """``./run.sh``: the planner, with the compiled hot modules when their build is
-    fresh and whole (``-stats`` says which ran)."""
+    fresh and whole (``-stats`` says which ran); the process ends by :func:`exit_now`."""
     install()
     defer_dataclasses_imports()
     from rrt_startup.compiled import activate
@@ -47,7 +47,10 @@ def planner() -> None:
     if "-stats" in sys.argv:
         sys.stderr.write(f"rrt_cli build: {build}\n")
     from rrt_cli.cli import entry_point
-    entry_point()
+    try:
+        entry_point()
+    except SystemExit as done:
+        exit_now(done.code)
 
 
 def draws_picture(argv: list[str]) -> bool:
