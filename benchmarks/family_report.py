@@ -171,7 +171,11 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
     out += [""]
     for table in preset.tables:
         out += [f"## {table.title}", ""]
-        planners = table_planners(table, [])
+        # A planner the run left out (--planners) has no line: "not available" says
+        # that a planner does not plan for the problem's system.
+        chosen = meta.get("planners", "").split()
+        planners = [name for name in table_planners(table, [])
+                    if not chosen or name in chosen]
         ran = [p.stem for p in table_problems(table) if any(r.problem == p.stem for r in rows)]
         if not ran:
             out += [f"No runs: none of {', '.join(planners) or 'its planners'} is available "

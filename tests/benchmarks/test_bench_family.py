@@ -182,3 +182,14 @@ def test_a_row_of_an_older_csv_without_the_duration_column_reads(tmp_path):
                               for line in path.read_text().splitlines()) + "\n")
     (back,) = read_csv(path)
     assert back == replace(row("rrt", "pendulum-t3", 1, 0.5), path_duration=None)
+
+
+def test_a_run_narrowed_to_some_planners_lists_only_those():
+    """``--planners`` left the others out: no "not available" line for them."""
+    rows = [row("rrt", "pendulum-t3", s, 0.02) for s in (1, 2, 3)]
+    narrowed = markdown_report(rows, {"preset": "family", "planners": "rrt"},
+                               FAMILY_PRESETS["family"])
+    whole = markdown_report(rows, {"preset": "family"}, FAMILY_PRESETS["family"])
+    assert "| kpiece (ours)" in whole and "| kpiece (ours)" not in narrowed
+    assert "| rrt (ours)" in narrowed
+    assert narrowed.count(NOT_AVAILABLE) == 1 < whole.count(NOT_AVAILABLE)  # 1: the note
