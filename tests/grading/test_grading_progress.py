@@ -146,7 +146,7 @@ def test_the_local_pool_runs_on_a_bare_python3(tmp_path):
             "status = main(sys.argv[2:])\n"
             "loaded = sorted(m for m in ('distributed', 'dask', 'tqdm', 'reportlab', 'numpy') "
             "if m in sys.modules)\nprint('loaded:', loaded, file=sys.stderr)\nsys.exit(status)")
-    done = subprocess.run([sys.executable, "-S", "-I", "-c", code, str(ROOT), *argv],
+    done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", code, str(ROOT), *argv],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert done.stderr.splitlines()[-1] == "loaded: []"
