@@ -1,18 +1,20 @@
-"""SST's measurements for docs/optimal-planning.md: first solutions on every problem it
-plans for, and the cost at 1 s against 10 s with an objective.
+"""SST's measurements: first solutions on every problem it plans for, and the cost at
+1 s against 10 s with an objective.
 
-    python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--only PART] [--json FILE]
-    python -m benchmarks.bench_sst cost [--seeds 20] [--only PART] [--json FILE]
+    python -m benchmarks.bench_sst first [--seeds 20] [--time 30] [--only PART] [--json F] [--page]
+    python -m benchmarks.bench_sst cost [--seeds 20] [--only PART] [--json F] [--page]
     python -m benchmarks.bench_sst remove   (in this interpreter: interpreted)
 
-Two runs at a time, each in its own interpreter with the compiled build where it is fresh; every answer is checked
-with the validator's own checks. Prints a Markdown table.
+Two runs at a time, each in its own interpreter with the compiled build where it is fresh;
+every answer is checked with the validator's own checks. Prints a Markdown table; with
+``--page`` also writes it as its results page, docs/results/sst-first.md or sst-cost.md,
+with the run's date, commit and machine.
 """
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
+import datetime
 import json
 import random
 import statistics
@@ -27,6 +29,16 @@ ROOT = Path(__file__).resolve().parent.parent
 FAMILY = ["pendulum-t3", "pendulum-t5", "pendulum-t10", "car2-corridors", "unicycle-circles",
           "car1-scene1", "car1-scene2", "car1-scene3"]
 COURSE = ["simple-0", "space-0", "space-1", "space-2", "space-3"]
+PAGES = {"first": ("sst-first.md", "SST's first solutions",
+                   "Every problem SST plans for (the kinodynamic family's and both ships on "
+                   "the course maps), seeds 0 to N - 1, each run to its first solution (no "
+                   "objective) within the time limit; cost: the first solution's (seconds "
+                   "for the family, map units for the ships)."),
+         "cost": ("sst-cost.md", "SST's cost at 1 s and 10 s",
+                  "With `-optimize`, 10 s a run, seeds 0 to N - 1; the cost at 1 s is the best "
+                  "found by then; \"cheaper at 10 s\": runs whose cost at 10 s is below their "
+                  "cost at 1 s, of those solved by 1 s.")}
+"""Per table: its results page in docs/results/, title and what its rows are."""
 COST_CASES = [("family/pendulum-t5.kp", None), ("family/car1-scene2.kp", None),
               ("course/space-1.sw", "spaceship")]
 
@@ -57,7 +69,7 @@ def run(job: list) -> dict:
     (path, vehicle), seed, limit, optimize = job
     problem = parse_any_problem((ROOT / "benchmarks" / "problems" / path).read_text())
     setup = kinoplan_setup(problem) if vehicle is None else grid_setup(problem, vehicle)
-    pdef = dataclasses.replace(setup.pdef, objective=Objective()) if optimize else setup.pdef
+    pdef = setup.pdef.with_objective(Objective()) if optimize else setup.pdef
     result = sst.solve(setup.si, pdef, StopCondition(time_limit=limit), random.Random(seed))
     valid = result.solved and validate_plan(setup, format_plan(result.trajectory,
                                                                result.tree)).valid
@@ -119,6 +131,18 @@ def cost_table(results: list[dict]) -> list[str]:
     return rows
 
 
+def page(what: str, table: list[str], meta: dict) -> str:
+    """``table`` as its results page: title, the run's facts, what the rows are."""
+    from benchmarks.results_page import run_table
+    _, title, rows = PAGES[what]
+    lines = [f"# Results: {title}", "",
+             f"Written by `python -m benchmarks.bench_sst {what} --page`; earlier runs are this "
+             "page's git history. Every run in its own interpreter, the compiled build where it "
+             "is fresh, every answer checked with the validator's own checks. SST and its "
+             "cost: [optimal-planning.md](../optimal-planning.md#sst).", ""]
+    return "\n".join(lines + run_table(meta) + ["", rows, ""] + table) + "\n"
+
+
 def _by_case(results: list[dict]) -> dict[str, list[dict]]:
     cases: dict[str, list[dict]] = {}
     for result in results:
@@ -134,6 +158,8 @@ def main() -> None:
     parser.add_argument("--only", default="", help="first, cost: the problems whose path "
                         "holds this (course/, family/, space-1)")
     parser.add_argument("--json", help="also write every run here")
+    parser.add_argument("--page", action="store_true", help="first, cost: also write the "
+                        "table as its results page (docs/results/sst-first.md, sst-cost.md)")
     args = parser.parse_args()
     if args.what == "remove":
         print("\n".join(removal_costs()))
@@ -146,12 +172,21 @@ def main() -> None:
     else:
         jobs = [(case, seed, 10.0, True) for case in COST_CASES for seed in range(args.seeds)]
     jobs = [job for job in jobs if args.only in job[0][0]]
+    from benchmarks.cli import _load_average, script_meta
+    started, clock = datetime.datetime.now(), time.monotonic()
+    meta = script_meta(started, 2, "python -m benchmarks.bench_sst " + " ".join(sys.argv[1:]))
     with ThreadPool(2) as pool:
         results = pool.map(run_in_child, jobs, chunksize=1)
     if args.json:
         with open(args.json, "w") as out:
             json.dump(results, out)
-    print("\n".join((first_table if args.what == "first" else cost_table)(results)))
+    table = (first_table if args.what == "first" else cost_table)(results)
+    print("\n".join(table))
+    if args.page:
+        meta.update({"load average after": _load_average(), "runs": str(len(results)),
+                     "wall seconds": f"{time.monotonic() - clock:.1f}"})
+        (ROOT / "docs" / "results" / PAGES[args.what][0]).write_text(
+            page(args.what, table, meta))
 
 
 if __name__ == "__main__":

@@ -141,6 +141,17 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
+def script_meta(started: datetime.datetime, workers: int, command: str) -> dict:
+    """When, where and how a measuring script's runs were made, before they start
+    (``results_page.run_table``'s keys; the caller adds the load after, the wall
+    seconds and the runs when they end)."""
+    return {"date": started.isoformat(timespec="seconds"), "commit": _git_commit(),
+            "host": platform.node(), "cpu": f"{os.cpu_count()} x {_cpu_model()}",
+            "workers": str(workers), "load average (1, 5, 15 min) before": _load_average(),
+            "load average after": "unknown (interrupted)", "wall seconds": "unknown",
+            "python": platform.python_version(), "ompl": "not used", "command": command}
+
+
 def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
     preset = presets.PRESETS[args.preset]
     specs = []

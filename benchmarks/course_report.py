@@ -27,8 +27,6 @@ import csv
 import json
 import datetime
 import math
-import os
-import platform
 import re
 import statistics
 import subprocess
@@ -39,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from benchmarks.catalog import ROOT
-from benchmarks.cli import _cpu_model, _git_commit, _load_average
+from benchmarks.cli import _load_average, script_meta
 from benchmarks.results_page import run_table
 from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup
@@ -241,16 +239,6 @@ def page(rows: list[dict], meta: dict, budget: float) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _meta(started: datetime.datetime, load_before: str, jobs: int, argv: list[str]) -> dict:
-    """When, where and how the runs were made (``results_page.run_table``'s keys)."""
-    return {"date": started.isoformat(timespec="seconds"), "commit": _git_commit(),
-            "host": platform.node(), "cpu": f"{os.cpu_count()} x {_cpu_model()}",
-            "workers": str(jobs), "load average (1, 5, 15 min) before": load_before,
-            "load average after": "unknown (interrupted)", "wall seconds": "unknown",
-            "python": platform.python_version(), "ompl": "not used",
-            "command": "python -m benchmarks.course_report " + " ".join(argv)}
-
-
 def main(argv: list[str] | None = None) -> int:
     from cli_common import OneLineErrorParser
     parser = OneLineErrorParser(prog="benchmarks.course_report",
@@ -271,7 +259,8 @@ def main(argv: list[str] | None = None) -> int:
     if not args.page_only:
         args.out.mkdir(parents=True, exist_ok=True)
         started, clock = datetime.datetime.now(), time.monotonic()
-        meta = _meta(started, _load_average(), args.jobs, argv)
+        meta = script_meta(started, args.jobs,
+                           "python -m benchmarks.course_report " + " ".join(argv))
         meta_path.write_text(json.dumps(meta, indent=2) + "\n")  # an interrupted run's too
         run_all(args.out, args.seeds, args.budget, args.jobs)
         meta.update({"load average after": _load_average(),

@@ -1,23 +1,27 @@
 """RRT* and Informed RRT* over seeds: first solutions, and the cost after a time budget.
 
     python -m benchmarks.star_sweep [--planners rrtstar,informed] [--seeds 20]
-        [--budgets 0,1,10] [--jobs 2] PROBLEM ...
+        [--budgets 0,1,10] [--jobs 2] [--page] PROBLEM ...
 
 Each run is ``./run.sh -planner P -seed S -stats`` (with ``-optimize -time B`` for a
 budget B > 0; 0 is the first solution, ``-time 30``), its answer checked by the
-validator's own checks and its cost read from ``-stats``. One line per problem,
-planner and budget: solved and valid out of the seeds, median first-solution time
-and median (and worst) cost, and for a point or arm2 problem the median cost over the
-shortest path (``benchmarks/shortest_path.py``, exact; ``benchmarks/arm2_shortest_path.py``,
-a valid path refined until it stops falling by 0.1%).
+validator's own checks and its cost read from ``-stats``. One Markdown table row per
+problem, planner and budget: solved and valid out of the seeds, median first-solution
+time and median (and worst) cost, and for a point or arm2 problem the median cost over
+the shortest path (``benchmarks/shortest_path.py``, exact; ``benchmarks/arm2_shortest_path.py``,
+a valid path refined until it stops falling by 0.1%). ``--page`` also writes the table
+as its results page, docs/results/star-sweep.md, with the run's date, commit and machine.
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime
 import re
 import statistics
 import subprocess
+import sys
+import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -27,6 +31,9 @@ from planning_core.setups import grid_setup, kinoplan_setup
 from validator.checks import validate_plan
 
 _STATS = re.compile(r"cost=(\S+) first_solution_seconds=(\S+)")
+HEADER = ["| problem | planner | budget | valid | first solution: median s | cost: median "
+          "| cost: worst | median / shortest |", "|---|---|---|---|---|---|---|---|"]
+PAGE = ROOT / "docs" / "results" / "star-sweep.md"
 
 
 def _setup(text: str):
@@ -68,18 +75,36 @@ def sweep(path: Path, planners: list[str], seeds: int, budgets: list[float],
                 runs = list(pool.map(lambda seed: _run(text, setup, planner, seed, budget),
                                      range(1, seeds + 1)))
                 good = [(cost, first) for valid, cost, first in runs if valid]
-                costs = [cost for cost, _ in good]
-                line = (f"{path.stem:16} {planner:8} budget={budget:>4g}s valid={len(good)}/"
-                        f"{seeds}")
-                if good:
-                    line += (f" first_s(median)={statistics.median(f for _, f in good):.3f}"
-                             f" cost(median)={statistics.median(costs):.4f}"
-                             f" cost(max)={max(costs):.4f}")
-                    if shortest:
-                        line += f" /shortest={statistics.median(costs) / shortest:.4f}"
+                line = _row(path.stem, planner, budget, seeds, good, shortest)
                 print(line, flush=True)
                 lines.append(line)
     return lines
+
+
+def _row(problem: str, planner: str, budget: float, seeds: int, good: list,
+         shortest) -> str:
+    """A table row: ``good`` are the valid runs' (cost, first-solution seconds)."""
+    costs = [cost for cost, _ in good]
+    figures = ["–"] * 4
+    if good:
+        median = statistics.median(costs)
+        figures = [f"{statistics.median(f for _, f in good):.3g}", f"{median:.4f}",
+                   f"{max(costs):.4f}", f"{median / shortest:.4f}" if shortest else "–"]
+    setting = f"{budget:g} s" if budget > 0 else "first solution"
+    return f"| {problem} | {planner} | {setting} | {len(good)}/{seeds} | " + " | ".join(
+        figures) + " |"
+
+
+def page(table: list[str], meta: dict) -> str:
+    """``table`` as its results page: title, the run's facts, what the rows are."""
+    from benchmarks.results_page import run_table
+    lines = ["# Results: RRT\\* and Informed RRT\\* over seeds (`benchmarks.star_sweep`)", "",
+             "Written by `python -m benchmarks.star_sweep --page`; earlier runs are this "
+             "page's git history. Each run is `./run.sh -planner P -seed S -stats`, to its "
+             "first solution (`-time 30`) or with `-optimize -time B` for a budget B; every "
+             "answer checked by the validator's own checks. Cost and the shortest paths: "
+             "[optimal-planning.md](../optimal-planning.md).", ""]
+    return "\n".join(lines + run_table(meta) + [""] + table) + "\n"
 
 
 def main() -> None:
@@ -89,10 +114,22 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--budgets", default="0")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--page", action="store_true",
+                        help="also write the table as docs/results/star-sweep.md")
     args = parser.parse_args()
-    for path in args.problems:
-        sweep(path, args.planners.split(","), args.seeds,
-              [float(b) for b in args.budgets.split(",")], args.jobs)
+    from benchmarks.cli import _load_average, script_meta
+    started, clock = datetime.datetime.now(), time.monotonic()
+    meta = script_meta(started, args.jobs,
+                       "python -m benchmarks.star_sweep " + " ".join(sys.argv[1:]))
+    print("\n".join(HEADER), flush=True)
+    table = HEADER + [row for path in args.problems for row in sweep(
+        path, args.planners.split(","), args.seeds,
+        [float(b) for b in args.budgets.split(",")], args.jobs)]
+    if args.page:
+        meta.update({"load average after": _load_average(),
+                     "runs": str((len(table) - 2) * args.seeds),
+                     "wall seconds": f"{time.monotonic() - clock:.1f}"})
+        PAGE.write_text(page(table, meta))
 
 
 if __name__ == "__main__":

@@ -9,25 +9,33 @@ no checker's rounding puts one of their answers at 0.1000000001.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Final
 
-if TYPE_CHECKING:  # typed for the compiled build; imported only where a family goal is made
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only (no run imports typing); the metric where a family goal is made
+    from collections.abc import Sequence
+    from typing import Final
+
     from planning_core.nearest.metric import SpaceMetric
 
 GOAL_TOLERANCE: Final = 0.1
 PLANNER_MARGIN: Final = 1e-9
 
 
-@dataclass(frozen=True)
 class GoalRegion:
-    """The goal point and the tolerance around it."""
+    """The goal point and the tolerance around it (a plain class, not a dataclass,
+    as every record on the planner's start-up path)."""
 
     point: tuple[float, float]
     """The goal position (x, y)."""
-    tolerance: float = GOAL_TOLERANCE
+    tolerance: float
     """Largest accepted distance of a state's position from ``point``."""
+
+    def __init__(self, point: tuple[float, float], tolerance: float = GOAL_TOLERANCE) -> None:
+        self.point = point
+        self.tolerance = tolerance
+
+    def __repr__(self) -> str:
+        return f"GoalRegion({self.point!r}, {self.tolerance!r})"
 
     def distance(self, state: Sequence[float]) -> float:
         return math.hypot(state[0] - self.point[0], state[1] - self.point[1])

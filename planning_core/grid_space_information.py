@@ -18,14 +18,15 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence
 
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import randint
 from planning_core.worlds.grid import GridWorld, SegmentHit
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:  # for the annotation only: the quadtree is imported when a planner asks
+    from typing import Any, Callable, Optional, Sequence
     from planning_core.nearest.quadtree import QuadtreeNearest
 
 # Ranks a braking line that meets a blocked cell after every free one (well below

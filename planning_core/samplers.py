@@ -11,7 +11,10 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Any, Final
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Final
 
 _GENERATOR: Final = random.Random
 _RANDOM: Final = random.Random.random

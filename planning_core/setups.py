@@ -5,19 +5,20 @@ way for the planner and the validator so that their numbers agree bit for bit.
 
 from __future__ import annotations
 
-import dataclasses
-from dataclasses import dataclass
-from typing import Any, Union
-
 from planning_core.problem_definition import ProblemDefinition
-from planning_core.space_information import ControlSpaceInformation, GeometricSpaceInformation
 
-SpaceInformation = Union[GeometricSpaceInformation, ControlSpaceInformation]
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Union
+
+    from planning_core.space_information import ControlSpaceInformation, GeometricSpaceInformation
+
+    SpaceInformation = Union[GeometricSpaceInformation, ControlSpaceInformation]
 
 
-@dataclass(frozen=True)
 class Setup:
-    """What a planner and the validator take from one problem."""
+    """What a planner and the validator take from one problem (a plain class, not a
+    dataclass, as every record on the planner's start-up path)."""
 
     si: SpaceInformation
     """How the system moves and where it may be."""
@@ -26,8 +27,18 @@ class Setup:
     problem: Any
     """The parsed problem it was made from (``Problem`` or ``KinoplanProblem``), for
     messages and drawings."""
-    family: bool = False
+    family: bool
     """A ``kinoplan`` problem (SPEC 5), not a grid map."""
+
+    def __init__(self, si: SpaceInformation, pdef: ProblemDefinition, problem: Any,
+                 family: bool = False) -> None:
+        self.si = si
+        self.pdef = pdef
+        self.problem = problem
+        self.family = family
+
+    def __repr__(self) -> str:
+        return f"Setup({self.si!r}, {self.pdef!r}, {self.problem!r}, family={self.family!r})"
 
     @property
     def system(self) -> Any:
@@ -58,6 +69,7 @@ def grid_setup(problem: Any, system_name: Any, options: Any = None) -> Setup:
     elif getattr(system, "directed", False):
         from planning_core.dubins_space_information import DubinsSpaceInformation
         if options is not None:
+            import dataclasses  # the Dubins car, a dataclass, has imported it
             system = dataclasses.replace(system, radius=options.radius)
         si = DubinsSpaceInformation(system, world)
     else:

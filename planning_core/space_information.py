@@ -20,8 +20,10 @@ where the world has none. A capability that may walk every cell of a big map tak
 a ``stop`` and raises :class:`~planning_core.interrupt.Interrupted` when it says
 the time is up. :mod:`planning_core.setups` builds the right one for a problem.
 
-The protocols are not compiled: a compiled planner sees them as ``Any`` and calls
-whichever implementation it is given.
+The protocols, with the goal's (:class:`Goal`), are for annotations only: modules
+import this one under ``if TYPE_CHECKING``, so that no run imports ``typing``
+(docs/setup-and-startup.md). They are not compiled: a compiled planner sees them as
+``Any`` and calls whichever implementation it is given.
 """
 
 from __future__ import annotations
@@ -31,9 +33,26 @@ from typing import Any, Callable, Optional, Protocol, Sequence
 
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
-from planning_core.problem_definition import Goal
 
 State = tuple[float, ...]
+
+
+class Goal(Protocol):
+    """A goal region (a :class:`~planning_core.problem_definition.ProblemDefinition`'s)."""
+
+    tolerance: float
+    """The largest :meth:`distance` of a state in the region (so ``distance - tolerance``
+    is a lower bound on the distance to the region: informed sampling's cost-to-go)."""
+
+    def distance(self, state: Sequence[float]) -> float:
+        """How far ``state`` is from the goal (the grid: by position; the family: the
+        goal's metric)."""
+
+    def accepts(self, state: Sequence[float]) -> bool:
+        """The validator's test: within the tolerance."""
+
+    def reached(self, state: Sequence[float]) -> bool:
+        """The planners' test: a hair inside the tolerance (``goal.PLANNER_MARGIN``)."""
 
 
 class MotionHit(Protocol):

@@ -19,7 +19,6 @@ and words its errors and help.
 
 from __future__ import annotations
 
-import dataclasses
 import random
 import sys
 from types import SimpleNamespace
@@ -170,11 +169,11 @@ def main(argv: list[str] | None = None) -> int:
     stop = StopCondition(time_limit=args.time, max_iterations=args.iterations)
     pdef = setup.pdef
     if args.optimize or args.cost is not None:
-        pdef = dataclasses.replace(pdef, objective=Objective(args.cost or 0.0))
+        pdef = pdef.with_objective(Objective(args.cost or 0.0))
     result = planner.solve(setup.si, pdef, stop, rng, planner.Params())
     if args.smooth and result.solved:
         from rrt_cli.smoothing import smooth_path  # only with -smooth: start-up
-        result = dataclasses.replace(result, path=smooth_path(setup.si, result.path, rng))
+        result = result.with_path(smooth_path(setup.si, result.path, rng), result.path_controls)
     stats = result.stats
     if args.stats:
         say_stats(setup.si, result, f"planner={args.planner} vehicle={vehicle_name} "

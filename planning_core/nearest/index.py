@@ -9,7 +9,10 @@ subclass's own method.
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any
+
 
 
 class NearestIndex:

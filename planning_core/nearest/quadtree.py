@@ -10,7 +10,10 @@ thousands of empty buckets.
 from __future__ import annotations
 
 import math
-from typing import Final
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Final
 
 
 class _Node:

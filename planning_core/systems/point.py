@@ -7,7 +7,10 @@ checked exactly against the world.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import ClassVar
 
 State = tuple[float, float]
 

@@ -12,11 +12,12 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar, Final, Optional
 
 from planning_core.samplers import uniform
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:  # for the annotation only: nothing more imported at run time
+    from typing import ClassVar, Final, Optional
     from planning_core.worlds.grid import GridWorld
 
 # Final: compiled code reads these as constants, not from the module's dict per slice.

@@ -18,11 +18,14 @@ from __future__ import annotations
 import math
 import random
 from array import array
-from typing import Any, Final, Sequence
 
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
 from planning_core.samplers import uniform
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Final, Sequence
 
 SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:

@@ -11,7 +11,6 @@ so that start-up only pays for the planner it runs.
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
 
 GEOMETRIC = frozenset({"geometric"})
 KINODYNAMIC = frozenset({"kinodynamic"})
@@ -22,22 +21,30 @@ def system_kind(system) -> str:
     return "kinodynamic" if system.kinodynamic else "geometric"
 
 
-@dataclass(frozen=True)
 class PlannerEntry:
-    """A planner's registry line: its module, what it plans for, one line about it."""
+    """A planner's registry line: its module, what it plans for, one line about it (a
+    plain class, not a dataclass, as every record on the planner's start-up path)."""
 
     module: str
     kinds: frozenset
     """The kinds of system it plans for (GEOMETRIC, KINODYNAMIC, ANY)."""
     summary: str
-    family_only: bool = False
+    family_only: bool
     """It asks what only the family's space information answers (blossom: ``advance``)."""
-    optimizing: bool = False
+    optimizing: bool
     """It keeps improving its answer when the problem has an objective (``-optimize``)."""
-    directed: bool = False
+    directed: bool
     """It plans for systems whose motions are one-way (the Dubins car: the motion
     a -> b travelled back is not the motion b -> a); a roadmap that joins its
     vertices both ways does not."""
+
+    def __init__(self, module: str, kinds: frozenset, summary: str, family_only: bool = False,
+                 optimizing: bool = False, directed: bool = False) -> None:
+        self.module, self.kinds, self.summary = module, kinds, summary
+        self.family_only, self.optimizing, self.directed = family_only, optimizing, directed
+
+    def __repr__(self) -> str:
+        return f"PlannerEntry({self.module!r}, {sorted(self.kinds)!r}, {self.summary!r})"
 
     def load(self):
         __import__(self.module)  # (importlib.import_module: importlib imports warnings)

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import functools
 import time
-from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any, Optional
 
 from planning_core.interrupt import Interrupted
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Optional
 
 
 class PlanStatus(Enum):
@@ -19,18 +21,22 @@ class PlanStatus(Enum):
     OUT_OF_MEMORY = "out of memory"
 
 
-@dataclass
 class StopCondition:
     """Ends a search after ``time_limit`` seconds or ``max_iterations`` iterations.
 
-    The clock starts when the condition is made, and covers the planner's
-    set-up too: long set-up loops ask :meth:`time_is_up` (the iteration limit
-    counts search iterations only, so ``-iterations N`` stays reproducible).
+    The clock starts when the condition is made (``started``), and covers the
+    planner's set-up too: long set-up loops ask :meth:`time_is_up` (the iteration
+    limit counts search iterations only, so ``-iterations N`` stays reproducible).
     """
 
-    time_limit: float = 30.0
-    max_iterations: int = 10_000_000
-    started: float = field(default_factory=time.perf_counter)
+    def __init__(self, time_limit: float = 30.0, max_iterations: int = 10_000_000) -> None:
+        self.time_limit = time_limit
+        self.max_iterations = max_iterations
+        self.started = time.perf_counter()
+
+    def __repr__(self) -> str:
+        return (f"StopCondition(time_limit={self.time_limit!r}, "
+                f"max_iterations={self.max_iterations!r})")
 
     @property
     def deadline(self) -> float:
@@ -49,25 +55,38 @@ class StopCondition:
         return time.perf_counter() >= self.deadline
 
 
-@dataclass(frozen=True)
 class PlanStats:
-    """What a planning run did: iterations, tree size, time (for -stats)."""
+    """What a planning run did: iterations, tree size, time (for -stats). A plain
+    class, not a dataclass, as every record on the planner's start-up path."""
 
     iterations: int
     tree_nodes: int
     planning_seconds: float
-    first_solution_seconds: Optional[float] = None
+    first_solution_seconds: Optional[float]
     """When the first solution was found (None: none, or the planner stops at its first:
     then it is ``planning_seconds``)."""
-    improvements: tuple[tuple[float, float], ...] = ()
+    improvements: tuple[tuple[float, float], ...]
     """An optimizing planner's ``(seconds, cost)`` at each better solution (the
     benchmarks' cost against time)."""
+
+    def __init__(self, iterations: int, tree_nodes: int, planning_seconds: float,
+                 first_solution_seconds: Optional[float] = None,
+                 improvements: tuple[tuple[float, float], ...] = ()) -> None:
+        self.iterations = iterations
+        self.tree_nodes = tree_nodes
+        self.planning_seconds = planning_seconds
+        self.first_solution_seconds = first_solution_seconds
+        self.improvements = improvements
+
+    def __repr__(self) -> str:
+        return (f"PlanStats({self.iterations!r}, {self.tree_nodes!r}, "
+                f"{self.planning_seconds!r}, {self.first_solution_seconds!r}, "
+                f"{self.improvements!r})")
 
 
 Edge = tuple  # (from_state, control or None, to_state)
 
 
-@dataclass(frozen=True)
 class PlanResult:
     """What a planner found, as states and controls; the output's rows are made
     from it in one place (:func:`planning_core.plan_rows.plan_rows`).
@@ -78,13 +97,26 @@ class PlanResult:
     ``(from_state, control, to_state)``, control None for geometric systems.
     """
 
-    status: PlanStatus
-    system: Any
-    path: tuple[tuple[float, ...], ...]
-    path_controls: tuple[tuple[float, ...], ...]
-    edges: tuple[Edge, ...]
-    stats: PlanStats
-    message: str = ""
+    def __init__(self, status: PlanStatus, system: Any, path: tuple[tuple[float, ...], ...],
+                 path_controls: tuple[tuple[float, ...], ...], edges: tuple[Edge, ...],
+                 stats: PlanStats, message: str = "") -> None:
+        self.status = status
+        self.system = system
+        self.path = path
+        self.path_controls = path_controls
+        self.edges = edges
+        self.stats = stats
+        self.message = message
+
+    def with_path(self, path: tuple[tuple[float, ...], ...],
+                  path_controls: tuple[tuple[float, ...], ...] = ()) -> PlanResult:
+        """The same result with another path (a smoothed one; the start's own)."""
+        return PlanResult(self.status, self.system, path, path_controls, self.edges,
+                          self.stats, self.message)
+
+    def __repr__(self) -> str:
+        return (f"PlanResult({self.status!r}, {self.system!r}, path of {len(self.path)}, "
+                f"{len(self.edges)} edges, {self.stats!r}, {self.message!r})")
 
     @property
     def solved(self) -> bool:

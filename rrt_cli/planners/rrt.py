@@ -16,13 +16,16 @@ from __future__ import annotations
 import random
 import time
 from dataclasses import dataclass
-from typing import Any, Callable, Optional
 
 from planning_core.nearest.index import NearestIndex
 from planning_core.samplers import uniform
 from rrt_cli.planners.base import PlanResult, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.steering import make_steering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Callable, Optional
 
 
 @dataclass(frozen=True)

