@@ -117,7 +117,7 @@ def test_on_a_terminal_a_bar(tmp_path, site):
     flags = [] if site else ["-S"]
     with open(tmp_path / "stdout", "wb") as out:
         grading = subprocess.Popen(
-            [sys.executable, *flags, "-I", "-c", "import sys; sys.path.insert(0, sys.argv[1]); "
+            [sys.executable, *flags, "-I", "-B", "-c", "import sys; sys.path.insert(0, sys.argv[1]); "
              "from grading.cli import main; sys.exit(main(sys.argv[2:]))", str(ROOT), *argv],
             stdout=out, stderr=secondary, stdin=subprocess.DEVNULL)
     os.close(secondary)
