@@ -373,6 +373,7 @@ def _meta(args: argparse.Namespace, argv: list[str] | None, include_ompl: bool,
         "ompl": _ompl_version() if include_ompl else "left out (--no-ompl)",
         "commit": _git_commit(),
         "command": "python -m benchmarks " + " ".join(sys.argv[1:] if argv is None else argv),
+        **({"planners": " ".join(args.planners)} if args.planners else {}),
     }
 
 

@@ -16,7 +16,8 @@ from typing import Mapping, Sequence
 
 from benchmarks.catalog import OMPL_CPP_PREFIX, OMPL_PREFIX, label
 from benchmarks.harness import parse_progress
-from benchmarks.report import _fmt, _ratio, group, markdown_table, planner_order, problem_order
+from benchmarks.report import (_fmt, _ratio, first_solution_median, group, markdown_table,
+                               planner_order, problem_order)
 from benchmarks.rows import RunRow
 
 PROGRESS_INTERVAL = 0.05
@@ -97,14 +98,6 @@ def counterpart(planner: str, prefix: str = OMPL_PREFIX) -> str | None:
     """OMPL's planner our optimizing planner is compared with (``prefix`` + its id:
     ``ompl-`` the Python bindings' peer, ``ompl-cpp-`` the C++ one)."""
     return None if planner.startswith(OMPL_PREFIX) else prefix + planner
-
-
-def first_solution_median(runs: Sequence[RunRow]) -> float:
-    """Median time to the first solution over all runs, an unsolved run counting its
-    time limit (as the other tables count an unsolved run's time)."""
-    return statistics.median(
-        (r.first_solution_seconds if r.solved and r.first_solution_seconds is not None
-         else r.time_limit) for r in runs) if runs else math.nan
 
 
 def convergence_table(rows: Sequence[RunRow], checkpoints: Sequence[float],

@@ -18,9 +18,10 @@ from typing import Sequence
 from benchmarks.catalog import GEOMETRIC_SYSTEMS, OMPL_PREFIX, label
 from benchmarks.family import FamilyPreset, table_planners, table_problems
 from benchmarks.report import (MIN_RUNS, TARGETS_NOTE, Spread, _fmt, _pm, _ratio,
-                               failures_table, fewest_runs, group, markdown_table,
-                               median_ratio, not_judged, summarize)
+                               check_targets, failures_table, fewest_runs, group,
+                               markdown_table, median_ratio, not_judged, summarize)
 from benchmarks.rows import RunRow
+from benchmarks.targets import FAMILY_TARGETS
 
 REFERENCE = OMPL_PREFIX + "rrt"
 NOT_AVAILABLE = "not available"
@@ -69,8 +70,9 @@ def _median_time(rows: Sequence[RunRow]) -> float:
 
 
 def targets_table(rows: Sequence[RunRow], min_runs: int = MIN_RUNS) -> list[str]:
-    """Issue 14's and 15's measurable targets, judged on this run's rows (a speed
-    target is met only when every run of the planner on that problem was solved);
+    """Issue 14's and 15's measurable targets and ``FAMILY_TARGETS``, judged on this
+    run's rows (a speed target is met only when every run of the planner on that
+    problem was solved);
     one measured with fewer than ``min_runs`` runs of a planner is not judged."""
     def judged(target: str, measured: str, met: bool, *runs: Sequence[RunRow]):
         fewest = fewest_runs(*runs)
@@ -107,6 +109,9 @@ def targets_table(rows: Sequence[RunRow], min_runs: int = MIN_RUNS) -> list[str]
             body.append(judged(f"{problem}: blossom b = 5 median < {BLOSSOM_SECONDS:g} s",
                                f"{median:.3g} s", median < BLOSSOM_SECONDS, runs))
     body += [judged(*target) for target in _prmstar_targets(by_key, problems)]
+    for check in check_targets(rows, targets=FAMILY_TARGETS):
+        body.append((check.target, check.detail, _verdict(check.met)) if check.runs >= min_runs
+                    else (check.target, not_judged(check.runs, min_runs), "–"))
     if not body:
         return ["No targets to judge in this run (OMPL's RRT or the planners left out)."]
     return markdown_table(("Target", "Measured", "Met"), body, "lrc")
@@ -128,8 +133,9 @@ def _prmstar_targets(by_key, problems) -> list[tuple]:
     return body
 
 
-def _verdict(met: bool) -> str:
-    return "yes" if met else "**no**"
+def _verdict(met: bool | None) -> str:
+    """None: the run cannot decide it (a zero median)."""
+    return "n/a" if met is None else "yes" if met else "**no**"
 
 
 def sweep_table(rows: Sequence[RunRow]) -> list[str]:
@@ -165,7 +171,11 @@ def markdown_report(rows: Sequence[RunRow], meta: dict[str, str],
     out += [""]
     for table in preset.tables:
         out += [f"## {table.title}", ""]
-        planners = table_planners(table, [])
+        # A planner the run left out (--planners) has no line: "not available" says
+        # that a planner does not plan for the problem's system.
+        chosen = meta.get("planners", "").split()
+        planners = [name for name in table_planners(table, [])
+                    if not chosen or name in chosen]
         ran = [p.stem for p in table_problems(table) if any(r.problem == p.stem for r in rows)]
         if not ran:
             out += [f"No runs: none of {', '.join(planners) or 'its planners'} is available "

@@ -26,8 +26,9 @@ from tabulate import tabulate
 
 from benchmarks.catalog import label, reference_planner
 from benchmarks.rows import RunRow
-from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, PathLengthVsPlanner,
-                                PlannerVsPlanner, SpeedVsReference, SuccessWithin, Target)
+from benchmarks.targets import (ISSUE_5_TARGETS, TARGETS, FirstSolutionVsPlanner,
+                                PathLengthVsPlanner, PlannerVsPlanner, SpeedVsReference,
+                                SuccessWithin, Target)
 from planning_core.vehicles import Vehicle
 
 MIN_RUNS = 5
@@ -120,6 +121,14 @@ def median_ratio(ours: Sequence[RunRow], reference: Sequence[RunRow],
         return math.nan
     denominator = statistics.median(theirs)
     return statistics.median(mine) / denominator if denominator > 0 else math.nan
+
+
+def first_solution_median(runs: Sequence[RunRow]) -> float:
+    """Median time to the first solution over all runs, an unsolved run counting its
+    time limit (as the other tables count an unsolved run's time)."""
+    return statistics.median(
+        (r.first_solution_seconds if r.solved and r.first_solution_seconds is not None
+         else r.time_limit) for r in runs) if runs else math.nan
 
 
 def _fmt(value: float | None, digits: int = 3) -> str:
@@ -379,13 +388,40 @@ def _judge_path_length(target: PathLengthVsPlanner, rows: Sequence[RunRow],
         mean_ratio <= target.factor, detail, fewest_runs(ours, baseline))]
 
 
+def _judge_first_solution(target: FirstSolutionVsPlanner, rows: Sequence[RunRow],
+                          shortest: Mapping[str, float] | None) -> list[TargetCheck]:
+    """A row per problem of the target's systems that both planners ran with a same seed."""
+    judged = [r for r in rows if r.vehicle in target.systems and r.implementation == "ours"]
+    by_key = group(judged, "problem", "planner")
+    checks = []
+    for problem in sorted({r.problem for r in judged}):
+        mine = by_key.get((problem, target.planner), [])
+        theirs = by_key.get((problem, target.baseline), [])
+        seeds = {r.seed for r in mine} & {r.seed for r in theirs}
+        mine = [r for r in mine if r.seed in seeds]
+        theirs = [r for r in theirs if r.seed in seeds]
+        if not seeds:
+            continue
+        ours, base = first_solution_median(mine), first_solution_median(theirs)
+        ratio = ours / base if base > 0 else math.nan
+        whose = f"our {target.baseline}'s"
+        checks.append(TargetCheck(
+            f"{problem}: {target.planner} median time to the first solution "
+            f"{_bound(target.factor, whose)}",
+            ratio <= target.factor if math.isfinite(ratio) else None,
+            f"{_ratio(ratio)} ({_fmt(ours * 1e3)} ms over {_fmt(base * 1e3)} ms)",
+            fewest_runs(mine, theirs)))
+    return checks
+
+
 def _count_within(ratios: Iterable[float], factor: float) -> int:
     return sum(1 for ratio in ratios if ratio <= factor)
 
 
 _EVALUATORS = {SuccessWithin: _judge_success, SpeedVsReference: _judge_speed,
                PlannerVsPlanner: _judge_planner_vs_planner,
-               PathLengthVsPlanner: _judge_path_length}
+               PathLengthVsPlanner: _judge_path_length,
+               FirstSolutionVsPlanner: _judge_first_solution}
 
 
 def path_length_ratios(ours: Sequence[RunRow], reference: Sequence[RunRow]) -> dict[str, float]:

@@ -4,7 +4,8 @@ its ``report.md``. Older runs are the page's git history.
 
     python -m benchmarks.results_page benchmarks/results/quick > docs/results/quick.md
 
-The page goes to stdout; a folder without ``report.md`` and ``meta.json`` is one line on
+A folder named otherwise than its preset (a narrowed run's ``--out``) is its own page,
+``docs/results/<folder name>.md``. The page goes to stdout; a folder without ``report.md`` and ``meta.json`` is one line on
 stderr and exit status 2.
 """
 
@@ -63,10 +64,15 @@ def results_page(folder: Path) -> str:
         raise ValueError("meta.json does not hold an object")
     preset = meta.get("preset", folder.name)
     shown = _shown(folder)
-    lines = [f"# Results: the `{preset}` preset", "",
-             f"The tables of the last run of `python -m benchmarks --preset {preset}` "
+    # A run narrowed into its own folder (--out) has its own page, named as the folder.
+    page = folder.name
+    title, run = ((f"the `{preset}` preset", f"`python -m benchmarks --preset {preset}`")
+                  if page == preset else
+                  (f"`{page}`, a run of the `{preset}` preset", "the command below"))
+    lines = [f"# Results: {title}", "",
+             f"The tables of the last run of {run} "
              f"written here, by `python -m benchmarks.results_page {shown} > "
-             f"docs/results/{preset}.md`; earlier runs are this page's git history. "
+             f"docs/results/{page}.md`; earlier runs are this page's git history. "
              f"The plots are in `{shown}/report.html` after a run.", ""]
     lines += run_table(meta) + [""] + report_body((folder / "report.md").read_text())
     return "\n".join(lines) + "\n"

@@ -75,7 +75,22 @@ class PathLengthVsPlanner:
     """Our planner compared against."""
 
 
-Target = SuccessWithin | SpeedVsReference | PlannerVsPlanner | PathLengthVsPlanner
+@dataclass(frozen=True)
+class FirstSolutionVsPlanner:
+    """``planner``'s median time to its first solution at most ``factor`` x our
+    ``baseline``'s, judged per problem of the ``systems``, on the seeds both ran."""
+
+    systems: tuple[str, ...]
+    """The rows' vehicles judged (a family problem's system: ``arm2``, ``rigid2``)."""
+    planner: str
+    factor: float
+    """Largest allowed ratio of the medians, planner over baseline."""
+    baseline: str = "prm"
+    """Our planner compared against."""
+
+
+Target = (SuccessWithin | SpeedVsReference | PlannerVsPlanner | PathLengthVsPlanner
+          | FirstSolutionVsPlanner)
 
 ISSUE_4_TARGETS: tuple[Target, ...] = (
     # Against OMPL's RRT, and success within a time on maps up to a size.
@@ -100,3 +115,10 @@ ISSUE_5_TARGETS: tuple[Target, ...] = (
 )
 
 TARGETS: tuple[Target, ...] = ISSUE_4_TARGETS + ISSUE_5_TARGETS
+
+FAMILY_TARGETS: tuple[Target, ...] = (
+    # Issue 33: PRM* as quick as PRM to its first answer (its refinement after it apart).
+    FirstSolutionVsPlanner(("arm2", "rigid2"), "prmstar", factor=2.0),
+)
+"""The family presets' targets of this table (benchmarks/family_report.py judges the
+others itself)."""

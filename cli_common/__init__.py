@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 import os
-import re
 import sys
 from types import SimpleNamespace
 
@@ -30,8 +29,7 @@ EXIT_USAGE = 2
 MAX_COUNT = 2 ** 63 - 1
 """The largest integer option (an iteration limit)."""
 
-_INTEGER = re.compile(r"[+-]?[0-9]+")
-_DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_DECIMAL = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
 
 MAX_PROBLEM_BYTES = 64 * 1024 * 1024
 """The most bytes of problem read from stdin (the validator's cap on a planner's
@@ -203,7 +201,8 @@ def _type_error(message: str) -> Exception:
 
 def positive_float(text: str) -> float:
     """An option value that must be a positive finite ASCII decimal (a time limit)."""
-    if not _DECIMAL.fullmatch(text):
+    import re  # only for a decimal option: a usual command line has none (re costs ms)
+    if not re.fullmatch(_DECIMAL, text):
         raise _type_error(f"{_show(text)} is not a number")
     value = float(text)
     if not (value > 0 and math.isfinite(value)):
@@ -224,7 +223,8 @@ def turning_radius(text: str) -> float:
 
 def bounded_integer(text: str, low: int, high: int, what: str) -> int:
     """An ASCII integer in [low, high]; its digits are counted before int() sees them."""
-    if not _INTEGER.fullmatch(text):
+    unsigned = text[1:] if text[:1] in ("+", "-") else text
+    if not (unsigned.isascii() and unsigned.isdigit()):  # [+-]?[0-9]+, without re
         raise _type_error(f"{_show(text)} is not an integer")
     digits = text.lstrip("+-").lstrip("0") or "0"
     if len(digits) <= len(str(high)):

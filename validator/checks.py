@@ -15,13 +15,12 @@ it happens (for the PDF).
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from planning_core.costs import path_cost
 from planning_core.goal import GOAL_TOLERANCE
-from planning_core.plan_reader import PlanArrays, PlanRowError, read_plan
+from planning_core.plan_reader import PlanArrays, PlanRowError, compile_row_patterns, read_plan
 from planning_core.plan_rows import row_widths
 from planning_core.plan_text import PlanParseError
 from planning_core.problem import Problem
@@ -53,18 +52,29 @@ CHORD_SLACK = 1e-9        # check 8: a chord may exceed SAMPLE_STEP by this (rou
 
 
 
-@dataclass(frozen=True)
 class Check:
-    """One check of SPEC 3 (5.5 for the family), registered by name."""
+    """One check of SPEC 3 (5.5 for the family), registered by name. (The records
+    here are plain classes, as on the planner's start-up path: each dataclass cost
+    the validator about half a millisecond while the planner ran; Limits, a
+    parameter set, stays one.)"""
 
     name: str
     """What grading scripts and the JSON call it."""
     title: str
     """What it asserts, in a few words."""
-    kinodynamic_only: bool = False
+    kinodynamic_only: bool
     """It applies only to systems driven by controls."""
-    directed_only: bool = False
+    directed_only: bool
     """It applies only to systems of one-way curved motions (``-dubins``)."""
+
+    def __init__(self, name: str, title: str, kinodynamic_only: bool = False,
+                 directed_only: bool = False) -> None:
+        self.name, self.title = name, title
+        self.kinodynamic_only, self.directed_only = kinodynamic_only, directed_only
+
+    def __repr__(self) -> str:
+        return (f"Check({self.name!r}, {self.title!r}, kinodynamic_only="
+                f"{self.kinodynamic_only!r}, directed_only={self.directed_only!r})")
 
     def applies(self, kinodynamic: bool, directed: bool = False) -> bool:
         return ((kinodynamic or not self.kinodynamic_only)
@@ -116,22 +126,33 @@ class Limits:
     """Corner-cut warnings listed one by one; the rest are summed up in one line."""
 
 
-@dataclass(frozen=True)
 class CheckResult:
+    """What one check found."""
+
     number: int                # its place in CHECKS (from 1), as in SPEC 3
     name: str                  # its name in CHECKS
     passed: bool
-    message: str = ""          # on failure: the SPEC message, verbatim
-    detail: str = ""           # values, expected vs found; on success a short summary
-    line: int | None = None    # 1-based line of the planner's output at fault
-    where: tuple[float, float] | None = None  # world point of the fault
+    message: str               # on failure: the SPEC message, verbatim
+    detail: str                # values, expected vs found; on success a short summary
+    line: int | None           # 1-based line of the planner's output at fault
+    where: tuple[float, float] | None  # world point of the fault
+
+    def __init__(self, number: int, name: str, passed: bool, message: str = "",
+                 detail: str = "", line: int | None = None,
+                 where: tuple[float, float] | None = None) -> None:
+        self.number, self.name, self.passed = number, name, passed
+        self.message, self.detail, self.line, self.where = message, detail, line, where
+
+    def __repr__(self) -> str:
+        return (f"CheckResult({self.number!r}, {self.name!r}, {self.passed!r}, "
+                f"{self.message!r}, {self.detail!r}, line={self.line!r}, "
+                f"where={self.where!r})")
 
     @property
     def title(self) -> str:
         return CHECKS[self.number - 1].title
 
 
-@dataclass(frozen=True)
 class CornerCut:
     """A point segment that enters a blocked cell between two 0.05 samples."""
 
@@ -140,22 +161,46 @@ class CornerCut:
     row: int
     where: tuple[float, float]  # where the segment enters the cell
 
+    def __init__(self, line: int, column: int, row: int, where: tuple[float, float]) -> None:
+        self.line, self.column, self.row, self.where = line, column, row, where
 
-@dataclass(frozen=True)
+    def __repr__(self) -> str:
+        return f"CornerCut({self.line!r}, {self.column!r}, {self.row!r}, {self.where!r})"
+
+
 class ValidationReport:
+    """The checks run on one answer, in order (the run stops at the first failure),
+    and what they measured."""
+
     system: object             # what was checked (planning_core.systems)
     strict: bool
     checks: list[CheckResult]
-    warnings: list[str] = field(default_factory=list)
-    corner_cuts: list[CornerCut] = field(default_factory=list)
-    plan: PlanArrays | None = None
-    path_length: float | None = None
+    warnings: list[str]
+    corner_cuts: list[CornerCut]
+    plan: PlanArrays | None
+    path_length: float | None
     # Spaceship: the state the last line's control leads to (not printed by planners).
-    final_state: tuple[float, float, float, float] | None = None
-    cost: float | None = None
+    final_state: tuple[float, float, float, float] | None
+    cost: float | None
     """A valid answer's cost (:func:`answer_cost`), else None."""
-    cost_kind: str = "length"
+    cost_kind: str
     """What the cost measures: "length", or "duration" (the family's kinodynamic systems)."""
+
+    def __init__(self, system: object, strict: bool, checks: list[CheckResult],
+                 warnings: list[str] | None = None, corner_cuts: list[CornerCut] | None = None,
+                 plan: PlanArrays | None = None, path_length: float | None = None,
+                 final_state: tuple[float, float, float, float] | None = None,
+                 cost: float | None = None, cost_kind: str = "length") -> None:
+        self.system, self.strict, self.checks = system, strict, checks
+        self.warnings = [] if warnings is None else warnings
+        self.corner_cuts = [] if corner_cuts is None else corner_cuts
+        self.plan, self.path_length, self.final_state = plan, path_length, final_state
+        self.cost, self.cost_kind = cost, cost_kind
+
+    def __repr__(self) -> str:
+        return (f"ValidationReport({self.system!r}, {self.strict!r}, {self.checks!r}, "
+                f"warnings={self.warnings!r}, path_length={self.path_length!r}, "
+                f"cost={self.cost!r})")
 
     @property
     def vehicle(self) -> Vehicle:
@@ -818,6 +863,12 @@ def validate_output(problem: Problem, vehicle: Vehicle | str, output_text: str,
                          limits, output_cap_exceeded)
 
 
+def prepare(setup: Setup) -> None:
+    """Do now what :func:`validate_plan` on ``setup`` would do first whatever the
+    answer: the validator calls it while the planner runs."""
+    compile_row_patterns(*row_widths(setup.system))
+
+
 def validate_plan(setup: Setup, output_text: str, strict: bool = False,
                   limits: Limits = Limits(),
                   output_cap_exceeded: int | None = None) -> ValidationReport:
@@ -840,8 +891,10 @@ def validate_plan(setup: Setup, output_text: str, strict: bool = False,
     if not report.valid:
         return report
     if hasattr(setup.system, "row_names"):  # rows sample curves (the Dubins car): their polyline
-        return dataclasses.replace(report, cost=run.path_length)
-    return dataclasses.replace(report, cost=answer_cost(setup.si, run.plan, run.final_state))
+        report.cost = run.path_length
+    else:
+        report.cost = answer_cost(setup.si, run.plan, run.final_state)
+    return report
 
 
 def answer_cost(si, plan: PlanArrays, final_state) -> float:

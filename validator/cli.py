@@ -20,7 +20,7 @@ stderr never change the status.
 from __future__ import annotations
 
 import os
-import signal
+import _signal as signal  # signal's C module: its enums cost ~1 ms before the planner starts
 import stat
 import sys
 from collections.abc import Sequence
@@ -337,13 +337,17 @@ def _read_problem(parser, args):
 
 
 def _setup(problem, vehicle: Vehicle, args):
-    """The problem's Setup (what the checks take), with the checks imported: the
-    validator's own heavy part, done while the planner runs."""
-    import validator.checks  # noqa: F401  (imported now, used after the planner ends)
+    """The problem's Setup (what the checks take), with the checks imported and
+    prepared (:func:`validator.checks.prepare`): the validator's own heavy part,
+    done while the planner runs."""
     from planning_core.setups import grid_setup, kinoplan_setup
+    from validator.checks import prepare
     if is_kinoplan(problem):
-        return kinoplan_setup(problem)
-    return grid_setup(problem, vehicle, vehicle_options(args))
+        setup = kinoplan_setup(problem)
+    else:
+        setup = grid_setup(problem, vehicle, vehicle_options(args))
+    prepare(setup)
+    return setup
 
 
 def _run(command: list[str], problem_bytes: bytes, timeout: float, prepare):

@@ -1,7 +1,7 @@
 """Run a planner as a subprocess: problem on its stdin, its stdout read back.
 
 Written for hostile planners. The planner starts in its own session (so its
-own process group); its stdin, stdout and stderr are driven by one ``selectors``
+own process group); its stdin, stdout and stderr are driven by one ``poll``
 loop, so a planner that never reads its input, or floods either output, cannot
 block us. Its stdout is read up to a cap (past it the planner is stopped); its
 stderr is passed on to ours up to another cap, the rest counted and dropped, and
@@ -23,13 +23,14 @@ missing, only the group is killed.
 
 from __future__ import annotations
 
-import os
-import selectors
-import signal
-import subprocess
+import _signal as signal  # signal's own C module: the validator starts the planner before
+import os                 # anything imports the enum the signal module wraps it in
+import math
+import select
 import sys
 import time
 from collections.abc import Callable, Sequence
+from errno import ENOENT, ENOTDIR
 
 DEFAULT_TIMEOUT = 60.0
 DEFAULT_OUTPUT_CAP = 64 * 1024 * 1024
@@ -118,14 +119,12 @@ def start_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DE
     command = tuple(command)
     if sys.stderr is not None:
         sys.stderr.flush()  # what we wrote before comes before what the planner writes
-    stderr = _StderrSink(stderr_cap, stderr_fd)  # before Popen: its pipes may reuse a closed fd 2
+    stderr = _StderrSink(stderr_cap, stderr_fd)  # before the pipes: they may reuse a closed fd 2
     containment = _Containment()
     began = time.monotonic()
     try:
-        process = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                   stderr=subprocess.PIPE, start_new_session=True,
-                                   preexec_fn=containment.preexec())
-    except (OSError, ValueError, subprocess.SubprocessError) as error:
+        process = _spawn(command, containment.preexec())
+    except (OSError, ValueError) as error:
         containment.close()
         return PlannerRun(command, b"", False, start_error=str(error), output_cap=output_cap,
                           timeout=timeout, stderr_cap=stderr_cap)
@@ -140,12 +139,156 @@ def start_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DE
     return started
 
 
+class _Child:
+    """The planner's process: what the module needs of ``subprocess.Popen`` (its
+    pid, its end of the three pipes, its exit status), without importing
+    subprocess, whose threading, locale and selectors would delay the planner's
+    start by milliseconds. ``returncode``: None while it runs, else as Popen's
+    (negative: the signal that ended it)."""
+
+    def __init__(self, pid: int, stdin: int, stdout: int, stderr: int) -> None:
+        self.pid, self.stdin, self.stdout, self.stderr = pid, stdin, stdout, stderr
+        self.returncode: int | None = None
+
+    def poll(self) -> int | None:
+        return self._wait(os.WNOHANG)
+
+    def wait(self, timeout: float | None = None) -> int | None:
+        """Its status, after at most ``timeout`` seconds (None: still running)."""
+        if timeout is None:
+            return self._wait(0)
+        # A planner whose outputs closed is usually gone within microseconds: look
+        # again soon, then less and less often.
+        deadline, delay = time.monotonic() + timeout, 0.00005
+        while self.poll() is None:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return None
+            delay = min(delay * 2, left, 0.05)
+            time.sleep(delay)
+        return self.returncode
+
+    def _wait(self, flags: int) -> int | None:
+        if self.returncode is None:
+            try:
+                pid, status = os.waitpid(self.pid, flags)
+            except ChildProcessError:  # reaped elsewhere: its status is lost (as Popen says)
+                self.returncode = 0
+                return 0
+            if pid == self.pid:
+                self.returncode = os.waitstatus_to_exitcode(status)
+        return self.returncode
+
+
+def _spawn(command: tuple[str, ...], preexec: Callable[[], None] | None) -> _Child:
+    """Start ``command`` as ``subprocess.Popen(command, stdin=PIPE, stdout=PIPE,
+    stderr=PIPE, start_new_session=True, preexec_fn=preexec)`` does: in its own
+    session, SIGPIPE and SIGXFSZ back to their defaults, no other file of ours open,
+    found on PATH as Popen finds it; OSError (worded as Popen's) or ValueError when
+    it cannot be started."""
+    if any("\0" in arg for arg in command):
+        raise ValueError("embedded null byte")
+    program = os.fsencode(command[0])
+    paths = ([program] if os.path.dirname(program) else
+             [os.path.join(os.fsencode(folder), program) for folder in os.get_exec_path()])
+    argv = [os.fsencode(arg) for arg in command]
+    max_fd = os.sysconf("SC_OPEN_MAX")
+    opened: list[int] = []
+    try:
+        for _ in range(4):  # stdin, stdout, stderr, and the exec error report
+            opened += os.pipe()  # not inherited: closed by exec
+        child_ends = (opened[0], opened[3], opened[5])
+        error_read, error_write = opened[6], opened[7]
+        pid = os.fork()
+        if pid == 0:  # the child: never returns
+            _exec_child(child_ends, error_write, max_fd, paths, argv, preexec)
+    except BaseException:
+        for fd in opened:
+            os.close(fd)
+        raise
+    for fd in (*child_ends, error_write):
+        os.close(fd)
+    try:
+        report = _read_all(error_read)  # empty when the exec took place
+    except BaseException:
+        _kill(pid)
+        os.waitpid(pid, 0)
+        for fd in (opened[1], opened[2], opened[4]):
+            os.close(fd)
+        raise
+    finally:
+        os.close(error_read)
+    child = _Child(pid, opened[1], opened[2], opened[4])
+    if report:
+        child.wait()
+        for fd in (child.stdin, child.stdout, child.stderr):
+            os.close(fd)
+        number, _, stage = report.partition(b":")
+        errno = int(number)
+        if stage == b"exec":
+            raise OSError(errno, os.strerror(errno), command[0])
+        raise OSError(errno, os.strerror(errno)) if errno else OSError(
+            "the planner's process failed before it could run the command")
+    return child
+
+
+def _read_all(fd: int) -> bytes:
+    data = b""
+    while True:
+        chunk = os.read(fd, 64)
+        if not chunk:
+            return data
+        data += chunk
+
+
+def _exec_child(child_ends: tuple[int, int, int], error_write: int, max_fd: int,
+                paths: list[bytes], argv: list[bytes],
+                preexec: Callable[[], None] | None) -> None:
+    """In the forked child: the pipes on fds 0-2, its own session, ``preexec``, every
+    other fd closed, then exec; on failure the errno (and whether exec itself
+    failed) goes back through ``error_write``. Never returns."""
+    stage, errno = b"noexec", 0
+    try:
+        moved = list(child_ends)
+        for index, fd in enumerate(moved):
+            while moved[index] <= 2:  # off 0-2 first, so that no dup2 below overwrites it
+                moved[index] = os.dup(moved[index])
+        for target, fd in enumerate(moved):
+            os.dup2(fd, target)  # the copy on 0-2 is inherited by the exec
+        for name in ("SIGPIPE", "SIGXFSZ"):  # Python ignores them; a program expects neither
+            if hasattr(signal, name):
+                signal.signal(getattr(signal, name), signal.SIG_DFL)
+        os.setsid()
+        if preexec is not None:
+            preexec()
+        os.closerange(3, error_write)
+        os.closerange(error_write + 1, max_fd)
+        stage, saved = b"exec", 0
+        for path in paths:
+            try:
+                os.execv(path, argv)
+            except OSError as error:  # as Popen: the first error but "not there", else the last
+                errno = error.errno or 0
+                if not saved and errno not in (ENOENT, ENOTDIR):
+                    saved = errno
+        errno = saved or errno
+    except OSError as error:
+        errno = error.errno or 0
+    except BaseException:
+        pass
+    finally:
+        try:
+            os.write(error_write, b"%d:%s" % (errno, stage))
+        finally:
+            os._exit(255)
+
+
 class StartedPlanner:
     """A planner :func:`start_planner` started: :meth:`finish` drives its pipes to
     the end and gives the :class:`PlannerRun`; :meth:`stop` kills it and everything
     it started (what ``finish`` does at its end too)."""
 
-    def __init__(self, command: tuple[str, ...], process: subprocess.Popen,
+    def __init__(self, command: tuple[str, ...], process: _Child,
                  containment: _Containment, began: float, timeout: float, stderr_cap: int):
         self.command, self.process, self.containment = command, process, containment
         self.began, self.timeout, self.stderr_cap = began, timeout, stderr_cap
@@ -187,11 +330,11 @@ class StartedPlanner:
             if self.pump is not None:
                 self.pump.close()
             else:
-                for pipe in (self.process.stdin, self.process.stdout, self.process.stderr):
-                    pipe.close()
+                for fd in (self.process.stdin, self.process.stdout, self.process.stderr):
+                    os.close(fd)
 
 
-def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
+def _pump_until_done(process: _Child, pump: _Pump, deadline: float
                      ) -> float | None:
     """Drive the pipes until both outputs end (or are abandoned) and the planner has
     exited, or the deadline; returns when it exited (None: it has not)."""
@@ -208,10 +351,7 @@ def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
         pump.step(min(limit - now, 0.1))
     # Its outputs are done with (EOF, cap, or abandoned); the planner itself may run on.
     if process.poll() is None and not pump.cap_exceeded:
-        try:
-            process.wait(timeout=max(0.0, deadline - time.monotonic()))
-        except subprocess.TimeoutExpired:
-            pass
+        process.wait(timeout=max(0.0, deadline - time.monotonic()))
     if exit_time is None and process.poll() is not None:
         exit_time = time.monotonic()
     return exit_time
@@ -220,7 +360,7 @@ def _pump_until_done(process: subprocess.Popen, pump: _Pump, deadline: float
 class _Pump:
     """Writes the planner's stdin, reads its stdout and stderr, never blocking."""
 
-    def __init__(self, process: subprocess.Popen, stdin_data: bytes, output_cap: int,
+    def __init__(self, process: _Child, stdin_data: bytes, output_cap: int,
                  stderr: _StderrSink):
         self.process = process
         self.output = bytearray()
@@ -228,19 +368,17 @@ class _Pump:
         self.cap_exceeded = False
         self.stderr = stderr
         self.to_write = memoryview(stdin_data)
-        self.stdin_fd, self.stdout_fd = process.stdin.fileno(), process.stdout.fileno()
-        self.stderr_fd = process.stderr.fileno()
+        self.stdin_fd, self.stdout_fd = process.stdin, process.stdout
+        self.stderr_fd = process.stderr
         for fd in (self.stdin_fd, self.stdout_fd, self.stderr_fd):
             os.set_blocking(fd, False)
-        # poll, not epoll: our own stderr may be a regular file, which epoll refuses.
-        self.selector = (selectors.PollSelector() if hasattr(selectors, "PollSelector")
-                         else selectors.DefaultSelector())
-        self.selector.register(self.stdout_fd, selectors.EVENT_READ)
-        self.selector.register(self.stderr_fd, selectors.EVENT_READ)
+        self.selector = _Poller()
+        self.selector.register(self.stdout_fd, select.POLLIN)
+        self.selector.register(self.stderr_fd, select.POLLIN)
         self.open_outputs = {self.stdout_fd, self.stderr_fd}
         self.stdin_open = True
         if self.to_write:
-            self.selector.register(self.stdin_fd, selectors.EVENT_WRITE)
+            self.selector.register(self.stdin_fd, select.POLLOUT)
         else:
             self.close_stdin()
 
@@ -254,22 +392,19 @@ class _Pump:
 
     def close_stdin(self) -> None:
         if self.stdin_open:
-            if self.stdin_fd in self.selector.get_map():
+            if self.stdin_fd in self.selector:
                 self.selector.unregister(self.stdin_fd)
-            try:
-                self.process.stdin.close()
-            except OSError:
-                pass  # EPIPE on the flush of a planner that never read
+            os.close(self.stdin_fd)
             self.stdin_open = False
 
     def step(self, wait: float) -> None:
         self.stderr.watch(self.selector)
-        for key, _ in self.selector.select(timeout=max(wait, 0.0)):
-            if key.fd == self.stdin_fd:
+        for fd in self.selector.select(max(wait, 0.0)):
+            if fd == self.stdin_fd:
                 self._write()
-            elif key.fd == self.stdout_fd:
+            elif fd == self.stdout_fd:
                 self._read_stdout()
-            elif key.fd == self.stderr_fd:
+            elif fd == self.stderr_fd:
                 self._read_stderr()
             else:
                 self.stderr.write_some()
@@ -329,9 +464,32 @@ class _Pump:
     def close(self) -> None:
         self.close_stdin()
         self.stderr.finish()
-        self.selector.close()
-        self.process.stdout.close()
-        self.process.stderr.close()
+        os.close(self.stdout_fd)
+        os.close(self.stderr_fd)
+
+
+class _Poller:
+    """``select.poll`` (not epoll: our own stderr may be a regular file, which epoll
+    refuses) that knows which fds it watches; :meth:`select` gives the fds with an
+    event (hang-up and error included: the read or write then says what it is)."""
+
+    def __init__(self) -> None:
+        self.poll = select.poll()
+        self.fds: set[int] = set()
+
+    def __contains__(self, fd: int) -> bool:
+        return fd in self.fds
+
+    def register(self, fd: int, events: int) -> None:
+        self.poll.register(fd, events)
+        self.fds.add(fd)
+
+    def unregister(self, fd: int) -> None:
+        self.poll.unregister(fd)
+        self.fds.discard(fd)
+
+    def select(self, timeout: float) -> list[int]:
+        return [fd for fd, _ in self.poll.poll(math.ceil(timeout * 1e3))]
 
 
 class _StderrSink:
@@ -360,11 +518,11 @@ class _StderrSink:
         if room > 0 and not self.broken:
             self.pending += chunk[:room]
 
-    def watch(self, selector: selectors.BaseSelector) -> None:
+    def watch(self, selector: _Poller) -> None:
         """Ask ``selector`` for writability of our stderr while there is something to write."""
-        registered = self.fd in selector.get_map()
+        registered = self.fd in selector
         if self.pending and not self.broken and not registered:
-            selector.register(self.fd, selectors.EVENT_WRITE)
+            selector.register(self.fd, select.POLLOUT)
         elif registered and (not self.pending or self.broken):
             selector.unregister(self.fd)
 
@@ -391,13 +549,12 @@ class _StderrSink:
                              f"only the first {self.cap} were passed on\n").encode()
         if not self.pending or self.broken:
             return
-        with selectors.PollSelector() if hasattr(selectors, "PollSelector") \
-                else selectors.DefaultSelector() as selector:
-            selector.register(self.fd, selectors.EVENT_WRITE)
-            deadline = time.monotonic() + _STDERR_FLUSH_TIME
-            while self.pending and not self.broken and time.monotonic() < deadline:
-                if selector.select(timeout=max(0.0, deadline - time.monotonic())):
-                    self.write_some()
+        selector = _Poller()
+        selector.register(self.fd, select.POLLOUT)
+        deadline = time.monotonic() + _STDERR_FLUSH_TIME
+        while self.pending and not self.broken and time.monotonic() < deadline:
+            if selector.select(max(0.0, deadline - time.monotonic())):
+                self.write_some()
 
 
 class _Containment:
@@ -459,25 +616,41 @@ class _Containment:
 
 
 def _load_prctl() -> Callable[..., int] | None:
-    """libc's prctl (Linux), or None."""
+    """libc's prctl (Linux), or None. Made as ``ctypes.CDLL(None, use_errno=True).prctl``
+    with ``c_int`` arguments and result makes it, from ctypes' own C module:
+    ``import ctypes`` (its types, ``struct``) cost the validator 1.5-3 ms before it
+    could start the planner."""
     if not sys.platform.startswith("linux"):
         return None
     try:
-        import ctypes
-        prctl = ctypes.CDLL(None, use_errno=True).prctl
-    except (ImportError, OSError, AttributeError):
+        import _ctypes
+
+        class CInt(_ctypes._SimpleCData):  # ctypes.c_int
+            _type_ = "i"
+
+        class CULong(_ctypes._SimpleCData):  # ctypes.c_ulong
+            _type_ = "L"
+
+        class Libc:  # what a foreign function is looked up in: a CDLL's handle
+            _handle = _ctypes.dlopen(None, _ctypes.RTLD_LOCAL)
+
+        class Function(_ctypes.CFuncPtr):  # CDLL(..., use_errno=True)._FuncPtr
+            _flags_ = _ctypes.FUNCFLAG_CDECL | _ctypes.FUNCFLAG_USE_ERRNO
+            _restype_ = CInt
+
+        prctl = Function(("prctl", Libc))
+        prctl.argtypes = (CInt, CULong, CULong, CULong, CULong)
+    except (ImportError, OSError, AttributeError, TypeError):
         return None
-    prctl.argtypes = [ctypes.c_int] + [ctypes.c_ulong] * 4
-    prctl.restype = ctypes.c_int
     return prctl
 
 
 def _get_subreaper(prctl: Callable[..., int] | None) -> bool:
     if prctl is None:
         return False
-    import ctypes
-    value = ctypes.c_int(0)
-    if prctl(_PR_GET_CHILD_SUBREAPER, ctypes.addressof(value), 0, 0, 0) != 0:
+    import _ctypes
+    value = prctl.restype(0)  # a C int for prctl to write into
+    if prctl(_PR_GET_CHILD_SUBREAPER, _ctypes.addressof(value), 0, 0, 0) != 0:
         return False
     return bool(value.value)
 

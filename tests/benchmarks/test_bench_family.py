@@ -95,6 +95,27 @@ def test_report_has_seed_layout_not_available_lines_and_the_targets():
     assert "not judged: 3 runs (need 5)" in text
 
 
+def test_prmstar_first_solution_target_is_judged_per_problem_against_prm():
+    # prmstar's whole run (its refinement) is long; only its first answer's time counts.
+    rows = []
+    for seed in range(1, 6):
+        for problem, star_first in (("arm2-pair1", 0.0015), ("arm2-pair2", 0.0031)):
+            rows.append(replace(row("prm", problem, seed, 0.001, system="arm2"),
+                                first_solution_seconds=0.001))
+            rows.append(replace(row("prmstar", problem, seed, 9.0, system="arm2"),
+                                first_solution_seconds=star_first))
+    rows.append(replace(row("prmstar", "arm2-pair1", 6, 9.0, system="arm2"),
+                        first_solution_seconds=5.0))  # a seed prm did not run: left out
+    rows.append(replace(row("prmstar", "rigid2-scene1", 1, 9.0, system="rigid2"),
+                        first_solution_seconds=0.001))  # prm did not run it: no line
+    bound = "median time to the first solution at most 2× our prm's"
+    lines = {cells[0]: cells[1:] for cells in parse_rows(targets_table(rows)) if bound in cells[0]}
+    assert lines == {f"arm2-pair1: prmstar {bound}": ["1.50× (1.5 ms over 1 ms)", "yes"],
+                     f"arm2-pair2: prmstar {bound}": ["3.10× (3.1 ms over 1 ms)", "**no**"]}
+    few = {cells[0]: cells[1:] for cells in parse_rows(targets_table(rows, min_runs=6))}
+    assert few[f"arm2-pair2: prmstar {bound}"] == ["not judged: 5 runs (need 6)", "–"]
+
+
 def parse_rows(table: list[str]) -> list[list[str]]:
     """The body rows of a Markdown table, as cells."""
     return [[cell.strip() for cell in line.strip("|").split("|")] for line in table[2:]]
@@ -161,3 +182,14 @@ def test_a_row_of_an_older_csv_without_the_duration_column_reads(tmp_path):
                               for line in path.read_text().splitlines()) + "\n")
     (back,) = read_csv(path)
     assert back == replace(row("rrt", "pendulum-t3", 1, 0.5), path_duration=None)
+
+
+def test_a_run_narrowed_to_some_planners_lists_only_those():
+    """``--planners`` left the others out: no "not available" line for them."""
+    rows = [row("rrt", "pendulum-t3", s, 0.02) for s in (1, 2, 3)]
+    narrowed = markdown_report(rows, {"preset": "family", "planners": "rrt"},
+                               FAMILY_PRESETS["family"])
+    whole = markdown_report(rows, {"preset": "family"}, FAMILY_PRESETS["family"])
+    assert "| kpiece (ours)" in whole and "| kpiece (ours)" not in narrowed
+    assert "| rrt (ours)" in narrowed
+    assert narrowed.count(NOT_AVAILABLE) == 1 < whole.count(NOT_AVAILABLE)  # 1: the note

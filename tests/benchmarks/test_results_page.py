@@ -28,11 +28,19 @@ def head_commit() -> str:
 
 
 def test_the_page_holds_date_commit_machine_and_the_reports_tables(tmp_path, capsys):
-    assert main([*TINY, "--out", str(tmp_path)]) == 0
+    folder = tmp_path / "smoke"
+    assert main([*TINY, "--out", str(folder)]) == 0
     capsys.readouterr()
-    assert page_main([str(tmp_path)]) == 0
+    assert page_main([str(folder)]) == 0
     page = capsys.readouterr().out
     assert page.startswith("# Results: the `smoke` preset\n")
+    assert "> docs/results/smoke.md`" in page
+    narrowed = tmp_path / "smoke-rrt"  # a narrowed run in its own folder: its own page
+    folder.rename(narrowed)
+    assert page_main([str(narrowed)]) == 0
+    other = capsys.readouterr().out
+    assert other.startswith("# Results: `smoke-rrt`, a run of the `smoke` preset\n")
+    assert "> docs/results/smoke-rrt.md`" in other and "smoke.md" not in other
     facts = dict(re.findall(r"^\| ([^|]+?) \| (.*) \|$", page, re.MULTILINE))
     assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d[+-]\d\d:\d\d", facts["date"])
     commit = re.match(r"[0-9a-f]{40}\b", facts["commit"])
@@ -42,7 +50,7 @@ def test_the_page_holds_date_commit_machine_and_the_reports_tables(tmp_path, cap
     assert facts["Python, OMPL"] == f"{platform.python_version()}, left out (--no-ompl)"
     assert re.fullmatch(r"[\d.]+ [\d.]+ [\d.]+ before, [\d.]+ [\d.]+ [\d.]+ after",
                         facts["load average (1, 5, 15 min)"])
-    report = (tmp_path / "report.md").read_text()
+    report = (narrowed / "report.md").read_text()
     tables = [line for line in report.splitlines() if line.startswith("|")]
     assert tables and all(line in page.splitlines() for line in tables)
     assert "## Targets" in page and "No target has runs to judge in this run" in page

@@ -117,7 +117,7 @@ def test_on_a_terminal_a_bar(tmp_path, site):
     flags = [] if site else ["-S"]
     with open(tmp_path / "stdout", "wb") as out:
         grading = subprocess.Popen(
-            [sys.executable, *flags, "-I", "-c", "import sys; sys.path.insert(0, sys.argv[1]); "
+            [sys.executable, *flags, "-I", "-B", "-c", "import sys; sys.path.insert(0, sys.argv[1]); "
              "from grading.cli import main; sys.exit(main(sys.argv[2:]))", str(ROOT), *argv],
             stdout=out, stderr=secondary, stdin=subprocess.DEVNULL)
     os.close(secondary)
@@ -146,7 +146,7 @@ def test_the_local_pool_runs_on_a_bare_python3(tmp_path):
             "status = main(sys.argv[2:])\n"
             "loaded = sorted(m for m in ('distributed', 'dask', 'tqdm', 'reportlab', 'numpy') "
             "if m in sys.modules)\nprint('loaded:', loaded, file=sys.stderr)\nsys.exit(status)")
-    done = subprocess.run([sys.executable, "-S", "-I", "-c", code, str(ROOT), *argv],
+    done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", code, str(ROOT), *argv],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert done.stderr.splitlines()[-1] == "loaded: []"

@@ -126,7 +126,7 @@ def test_run_sh_imports_inspect_and_copy_when_used_and_once():
     stub = (f"import sys\nsys.path.insert(0, {str(ROOT)!r})\n"
             "from rrt_startup.launch import defer_dataclasses_imports\n"
             "defer_dataclasses_imports()\n")
-    done = subprocess.run([sys.executable, "-S", "-I", "-c", stub + STUB_PROBE],
+    done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", stub + STUB_PROBE],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.split("\n")[0] == "[] NoDoc(x: int) True True None [[1]]"

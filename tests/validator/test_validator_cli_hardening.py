@@ -155,6 +155,21 @@ def test_a_stdout_that_takes_no_verdict_is_exit_4_with_one_line(redirect, words,
     assert done.stderr.decode() == f"rrt-validator: cannot write the verdict to stdout: {words}\n"
 
 
+@pytest.mark.parametrize("command, status", [
+    ('-noviz -- cat "$GOOD" >&-', 4), ('-noviz -- cat "$GOOD" >/dev/full', 4),
+    ('-noviz -- cat "$GOOD" 2>&-', 0), ('-noviz -- cat "$GOOD" 2>/dev/full', 0),
+    ("-noviz -- cat /dev/null 2>&-", 1), ("-h >/dev/full", 4), ("-h >&-", 4),
+    ("-noviz -bogus -- cat 2>/dev/full", 2)])
+def test_the_launcher_ends_as_the_module_does(command, status, tmp_path):
+    # ./rrt-validator ends the process without the interpreter's tear-down
+    # (rrt_startup.launch.exit_now): same status, same output as python -m validator.
+    launcher = shell(f"{ROOT / 'rrt-validator'} {command}", tmp_path)
+    module = shell(f"$V {command}", tmp_path)
+    assert (launcher.returncode, launcher.stdout, launcher.stderr.splitlines()[:1]) == \
+        (module.returncode, module.stdout, module.stderr.splitlines()[:1])
+    assert launcher.returncode == status
+
+
 # ----- item 9: ASCII option values ---------------------------------------------------
 
 

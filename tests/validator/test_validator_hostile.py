@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -44,6 +45,65 @@ def test_run_planner_cap_cuts_the_output_and_stops_the_planner():
 def test_run_planner_cannot_start():
     run = run_planner(["/nonexistent/planner"], b"", timeout=5)
     assert not run.started and "No such file" in run.start_error
+
+
+def test_run_planner_words_a_failed_start_as_popen_does(tmp_path):
+    # run_planner forks and execs itself (subprocess costs the validator's start
+    # milliseconds): its reasons must read as Popen's, PATH searched the same way.
+    not_executable = tmp_path / "first" / "planner"
+    not_executable.parent.mkdir()
+    not_executable.write_text("#!/bin/sh\n")
+    bad_interpreter = tmp_path / "second" / "planner"
+    bad_interpreter.parent.mkdir()
+    bad_interpreter.write_text("#!/nonexistent/sh\n")
+    bad_interpreter.chmod(0o755)
+    garbage = tmp_path / "garbage"
+    garbage.write_bytes(b"\x00\x01not a program")
+    garbage.chmod(0o755)
+    path = f"{not_executable.parent}{os.pathsep}{bad_interpreter.parent}"
+    for command, env_path in [(["/nonexistent/planner"], None), ([str(not_executable)], None),
+                              ([str(tmp_path)], None), ([str(bad_interpreter)], None),
+                              ([str(garbage)], None), (["planner"], path),
+                              (["planner"], str(bad_interpreter.parent)), (["planner"], ""),
+                              (["bad\0name"], None)]:
+        old_path = os.environ.get("PATH")
+        if env_path is not None:
+            os.environ["PATH"] = env_path
+        try:
+            run = run_planner(command, b"", timeout=5)
+            try:
+                subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, start_new_session=True).wait()
+                expected = None
+            except (OSError, ValueError) as error:
+                expected = str(error)
+        finally:
+            if env_path is not None:
+                os.environ["PATH"] = old_path
+        assert expected is not None and (run.started, run.start_error) == (False, expected)
+
+
+def test_run_planner_gives_the_planner_its_own_session_and_only_the_three_pipes():
+    # As Popen(start_new_session=True, close_fds=True, restore_signals=True) did: its
+    # own session and group, none of our files (an inheritable one included), and
+    # SIGPIPE and SIGXFSZ, which Python ignores, not ignored (grep, started by sh,
+    # shows the mask it inherited; a Python planner would ignore both again).
+    probe = ("import os, sys\n"
+             "print(os.getsid(0) == os.getpid() == os.getpgid(0))\n"
+             "print(sorted(int(fd) for fd in os.listdir('/proc/self/fd')))\n"
+             "print(sys.stdin.read())")
+    read_end, write_end = os.pipe()
+    os.set_inheritable(write_end, True)
+    try:
+        run = run_planner(python_planner(probe), b"problem", timeout=20)
+        ignored = run_planner(["sh", "-c", "grep SigIgn /proc/self/status"], b"", timeout=20)
+    finally:
+        os.close(read_end)
+        os.close(write_end)
+    # listdir's own fd is the fourth.
+    assert run.output.decode().splitlines() == ["True", "[0, 1, 2, 3]", "problem"]
+    mask = int(ignored.output.split()[1], 16)
+    assert mask & (1 << (signal.SIGPIPE - 1)) == mask & (1 << (signal.SIGXFSZ - 1)) == 0
 
 
 def test_run_planner_feeds_a_big_problem_to_a_planner_that_never_reads_it():
