@@ -69,6 +69,19 @@ def _push(stack: list[_Node], top: int, node: _Node, x: float, y: float,
     return top + 1
 
 
+def _push_children(stack: list[_Node], top: int, node: _Node, x: float, y: float,
+                   bound: float) -> int:
+    """:func:`_push` ``node``'s four children, the quadrant of (x, y) last so that it
+    pops first; the new top."""
+    children = node.children
+    assert children is not None
+    q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)  # node.quadrant, inline
+    top = _push(stack, top, children[3 - q], x, y, bound)
+    top = _push(stack, top, children[q ^ 1], x, y, bound)
+    top = _push(stack, top, children[q ^ 2], x, y, bound)
+    return _push(stack, top, children[q], x, y, bound)
+
+
 class _Scan:
     """What a query keeps while the walk visits leaves: ``scan`` reads a leaf's
     points and returns the squared distance to prune by from then on."""
@@ -145,12 +158,7 @@ class QuadtreeNearest:
                 if node.indices:
                     bound = keep.scan(node.indices)
                 continue
-            # Push the far quadrants first so the query's own quadrant pops first.
-            q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)  # node.quadrant, inline
-            top = _push(stack, top, children[3 - q], x, y, bound)
-            top = _push(stack, top, children[q ^ 1], x, y, bound)
-            top = _push(stack, top, children[q ^ 2], x, y, bound)
-            top = _push(stack, top, children[q], x, y, bound)
+            top = _push_children(stack, top, node, x, y, bound)
 
     def nearest(self, x: float, y: float) -> int:
         """Index of the point closest to (x, y); ties go to the earliest inserted.
@@ -180,12 +188,7 @@ class QuadtreeNearest:
                     if d2 < best_d2 or (d2 == best_d2 and index < best_index):
                         best_d2, best_index = d2, index
                 continue
-            # Far quadrants pushed first so that the query's own pops first.
-            q = (1 if x >= node.cx else 0) + (2 if y >= node.cy else 0)
-            top = _push(stack, top, children[3 - q], x, y, best_d2)
-            top = _push(stack, top, children[q ^ 1], x, y, best_d2)
-            top = _push(stack, top, children[q ^ 2], x, y, best_d2)
-            top = _push(stack, top, children[q], x, y, best_d2)
+            top = _push_children(stack, top, node, x, y, best_d2)
         return best_index
 
     def k_nearest(self, x: float, y: float, k: int) -> list[int]:
