@@ -641,7 +641,19 @@ def _load_prctl() -> Callable[..., int] | None:
         prctl = Function(("prctl", Libc))
         prctl.argtypes = (CInt, CULong, CULong, CULong, CULong)
     except (ImportError, OSError, AttributeError, TypeError):
+        return _load_prctl_by_ctypes()  # ctypes' private module changed: the public way
+    return prctl
+
+
+def _load_prctl_by_ctypes() -> Callable[..., int] | None:
+    """:func:`_load_prctl` through ``ctypes`` itself, or None."""
+    try:
+        import ctypes
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+    except (ImportError, OSError, AttributeError):
         return None
+    prctl.argtypes = [ctypes.c_int] + [ctypes.c_ulong] * 4
+    prctl.restype = ctypes.c_int
     return prctl
 
 

@@ -10,6 +10,8 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from planning_core.problem_text import format_problem, parse_problem
 from validator.checks import INVALID_VERDICT, VALID_VERDICT
 from validator.run_planner import run_planner
@@ -253,3 +255,13 @@ def test_terminating_the_validator_kills_the_planner_group(tmp_path):
     validator.stdout.close()
     validator.stderr.close()
     assert gone(int(pid_file.read_text()))
+
+
+def test_prctl_made_through_ctypes_itself_reads_the_same_subreaper_flag():
+    """The fallback when ctypes' private C module no longer makes prctl."""
+    from validator import run_planner
+    fast, public = run_planner._load_prctl(), run_planner._load_prctl_by_ctypes()
+    if public is None:
+        pytest.skip("no libc prctl here")
+    assert fast is not None
+    assert run_planner._get_subreaper(fast) == run_planner._get_subreaper(public)
