@@ -54,9 +54,9 @@ CHORD_SLACK = 1e-9        # check 8: a chord may exceed SAMPLE_STEP by this (rou
 
 class Check:
     """One check of SPEC 3 (5.5 for the family), registered by name. (The records
-    here are plain classes, as on the planner's start-up path: each dataclass cost
-    the validator about half a millisecond while the planner ran; Limits, a
-    parameter set, stays one.)"""
+    here are plain classes, as on the planner's start-up path, so that the validator
+    makes fewer dataclasses while the planner runs; Limits, a parameter set, stays
+    a dataclass.)"""
 
     name: str
     """What grading scripts and the JSON call it."""

@@ -20,7 +20,7 @@ stderr never change the status.
 from __future__ import annotations
 
 import os
-import _signal as signal  # signal's C module: its enums cost ~1 ms before the planner starts
+import _signal as signal  # signal's C module: no enums to make before the planner starts
 import stat
 import sys
 from collections.abc import Sequence

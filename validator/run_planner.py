@@ -618,8 +618,8 @@ class _Containment:
 def _load_prctl() -> Callable[..., int] | None:
     """libc's prctl (Linux), or None. Made as ``ctypes.CDLL(None, use_errno=True).prctl``
     with ``c_int`` arguments and result makes it, from ctypes' own C module:
-    ``import ctypes`` (its types, ``struct``) cost the validator 1.5-3 ms before it
-    could start the planner."""
+    ``import ctypes`` (its types, ``struct``) would delay the planner's start
+    (docs/setup-and-startup.md has the figures)."""
     if not sys.platform.startswith("linux"):
         return None
     try:
