@@ -172,7 +172,7 @@ def main() -> None:
     else:
         jobs = [(case, seed, 10.0, True) for case in COST_CASES for seed in range(args.seeds)]
     jobs = [job for job in jobs if args.only in job[0][0]]
-    from benchmarks.cli import _load_average, script_meta
+    from benchmarks.cli import finish_script_meta, script_meta
     started, clock = datetime.datetime.now(), time.monotonic()
     meta = script_meta(started, 2, "python -m benchmarks.bench_sst " + " ".join(sys.argv[1:]))
     with ThreadPool(2) as pool:
@@ -183,8 +183,7 @@ def main() -> None:
     table = (first_table if args.what == "first" else cost_table)(results)
     print("\n".join(table))
     if args.page:
-        meta.update({"load average after": _load_average(), "runs": str(len(results)),
-                     "wall seconds": f"{time.monotonic() - clock:.1f}"})
+        finish_script_meta(meta, clock, len(results))
         (ROOT / "docs" / "results" / PAGES[args.what][0]).write_text(
             page(args.what, table, meta))
 

@@ -152,6 +152,15 @@ def script_meta(started: datetime.datetime, workers: int, command: str) -> dict:
             "python": platform.python_version(), "ompl": "not used", "command": command}
 
 
+def finish_script_meta(meta: dict, clock: float, runs: int | None = None) -> None:
+    """:func:`script_meta`'s figures known at the end: the load after, the wall seconds
+    since ``clock`` (``time.monotonic()`` at the start) and, given, the runs made."""
+    meta.update({"load average after": _load_average(),
+                 "wall seconds": f"{time.monotonic() - clock:.1f}"})
+    if runs is not None:
+        meta["runs"] = str(runs)
+
+
 def build_specs(args, planners: list[catalog.PlannerChoice]) -> list[RunSpec]:
     preset = presets.PRESETS[args.preset]
     specs = []

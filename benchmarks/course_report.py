@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from benchmarks.catalog import ROOT
-from benchmarks.cli import _load_average, script_meta
+from benchmarks.cli import finish_script_meta, script_meta
 from benchmarks.results_page import run_table
 from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup
@@ -263,8 +263,7 @@ def main(argv: list[str] | None = None) -> int:
                            "python -m benchmarks.course_report " + " ".join(argv))
         meta_path.write_text(json.dumps(meta, indent=2) + "\n")  # an interrupted run's too
         run_all(args.out, args.seeds, args.budget, args.jobs)
-        meta.update({"load average after": _load_average(),
-                     "wall seconds": f"{time.monotonic() - clock:.1f}"})
+        finish_script_meta(meta, clock)
         meta_path.write_text(json.dumps(meta, indent=2) + "\n")
     rows = [r for r in stored(args.out / "runs.csv") if int(r["seed"]) <= args.seeds
             and r["setting"] in settings(args.budget)]

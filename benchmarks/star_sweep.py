@@ -117,7 +117,7 @@ def main() -> None:
     parser.add_argument("--page", action="store_true",
                         help="also write the table as docs/results/star-sweep.md")
     args = parser.parse_args()
-    from benchmarks.cli import _load_average, script_meta
+    from benchmarks.cli import finish_script_meta, script_meta
     started, clock = datetime.datetime.now(), time.monotonic()
     meta = script_meta(started, args.jobs,
                        "python -m benchmarks.star_sweep " + " ".join(sys.argv[1:]))
@@ -126,9 +126,7 @@ def main() -> None:
         path, args.planners.split(","), args.seeds,
         [float(b) for b in args.budgets.split(",")], args.jobs)]
     if args.page:
-        meta.update({"load average after": _load_average(),
-                     "runs": str((len(table) - 2) * args.seeds),
-                     "wall seconds": f"{time.monotonic() - clock:.1f}"})
+        finish_script_meta(meta, clock, (len(table) - 2) * args.seeds)
         PAGE.write_text(page(table, meta))
 
 

@@ -105,7 +105,7 @@ def _rows_pattern(fields: int) -> re.Pattern:
 
 def compile_row_patterns(*widths: int) -> None:
     """Compile the patterns :func:`read_plan` uses for rows of these widths now (the
-    validator does while the planner runs: re's compiler takes about a millisecond)."""
+    validator does while the planner runs, so that reading the answer does not)."""
     for fields in widths:
         _rows_pattern(fields)
 
