@@ -27,13 +27,31 @@ def _checkout_hidden() -> bool:
     return probe().level != "none"
 
 
+@lru_cache(maxsize=1)
+def _checkout_closed() -> Path | None:
+    """A folder on the way to this checkout that others may not enter (``mktemp -d``
+    makes one, mode 0700), where the sandbox runs each submission as a uid of its
+    own, which then cannot exec our run.sh; else None."""
+    closed = [folder for folder in (ROOT, *ROOT.parents) if not folder.stat().st_mode & 0o001]
+    if not closed:
+        return None
+    from grading.sandbox import probe
+    return closed[-1] if probe().level == "full" else None
+
+
 def our_run() -> Path:
     """This checkout's run.sh, which the fake submissions exec; skips the test where
-    the sandbox hides the checkout (a clone under /tmp: clone elsewhere to run it)."""
+    the sandbox hides the checkout (a clone under /tmp: clone elsewhere to run it) or
+    a submission's uid cannot reach it (a clone inside a folder of mode 0700)."""
     if _checkout_hidden():
         pytest.skip(f"the sandbox empties the folder of this checkout ({ROOT}) for every "
                     "submission, whose run.sh execs ours: clone it outside "
                     + ", ".join(EMPTIED) + " to run this test")
+    closed = _checkout_closed()
+    if closed is not None:
+        pytest.skip(f"the sandbox runs each submission as a uid of its own, which may not "
+                    f"enter {closed} (mode {closed.stat().st_mode & 0o777:o}) to exec this "
+                    "checkout's run.sh: clone it where others may enter to run this test")
     return OUR_RUN
 
 # Two copies of one submission under different names (a fixed seed: the same answers),
