@@ -28,15 +28,18 @@ def _checkout_hidden() -> bool:
 
 
 @lru_cache(maxsize=1)
-def _checkout_closed() -> Path | None:
-    """A folder on the way to this checkout that others may not enter (``mktemp -d``
-    makes one, mode 0700), where the sandbox runs each submission as a uid of its
-    own, which then cannot exec our run.sh; else None."""
+def closed_folder() -> Path | None:
+    """The outermost folder on the way to this checkout that other users may not
+    enter (``mktemp -d`` makes one, mode 0700), else None: a submission's program,
+    run by the sandbox as a uid of its own, or nobody, cannot reach our files."""
     closed = [folder for folder in (ROOT, *ROOT.parents) if not folder.stat().st_mode & 0o001]
-    if not closed:
-        return None
-    from grading.sandbox import probe
-    return closed[-1] if probe().level == "full" else None
+    return closed[-1] if closed else None
+
+
+def closed_message(closed: Path) -> str:
+    return (f"other users may not enter {closed} (mode {closed.stat().st_mode & 0o777:o}), "
+            "so the sandbox's runs cannot reach this checkout: clone it where others may "
+            "enter to run this test")
 
 
 def our_run() -> Path:
@@ -47,11 +50,10 @@ def our_run() -> Path:
         pytest.skip(f"the sandbox empties the folder of this checkout ({ROOT}) for every "
                     "submission, whose run.sh execs ours: clone it outside "
                     + ", ".join(EMPTIED) + " to run this test")
-    closed = _checkout_closed()
-    if closed is not None:
-        pytest.skip(f"the sandbox runs each submission as a uid of its own, which may not "
-                    f"enter {closed} (mode {closed.stat().st_mode & 0o777:o}) to exec this "
-                    "checkout's run.sh: clone it where others may enter to run this test")
+    if closed_folder() is not None:
+        from grading.sandbox import probe
+        if probe().level == "full":  # each run its own uid
+            pytest.skip(closed_message(closed_folder()))
     return OUR_RUN
 
 # Two copies of one submission under different names (a fixed seed: the same answers),
