@@ -18,12 +18,12 @@ COURSE_PROBLEMS = sorted(COURSE_DIR.glob("*.sw"))
 
 def run_planner(args: list[str], stdin: str, timeout: float = 120,
                 interpreted: bool = False) -> subprocess.CompletedProcess:
-    """Run ``python -m rrt_cli`` as a user would, with the problem on stdin (with the
+    """Run ``./run.sh ARGS`` as a user would, with the problem on stdin (with the
     compiled modules when their build is fresh, unless ``interpreted``)."""
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env = dict(os.environ)
     if interpreted:
         env["RRT_INTERPRETED"] = "1"
-    return subprocess.run([sys.executable, "-m", "rrt_cli", *args], input=stdin.encode(),
+    return subprocess.run([str(ROOT / "run.sh"), *args], input=stdin.encode(),
                           capture_output=True, timeout=timeout, cwd=ROOT, env=env)
 
 
@@ -46,6 +46,23 @@ def seed_sweep(seeds, fast=(0,)) -> list:
     Test ids stay the bare seeds."""
     return [pytest.param(seed, marks=() if seed in fast else pytest.mark.slow)
             for seed in seeds]
+
+
+def unit_sample(params, keep: int = 1) -> list:
+    """``params`` for ``parametrize`` with the first ``keep`` in the unit run and the
+    rest marked slow: one case per path stays in ``-m "not slow"``, every case runs in
+    ``./test.sh``. An item is a ``pytest.param`` (its id and marks are kept), a tuple
+    (one case's values, as for several argnames) or one value."""
+    sample = []
+    for index, item in enumerate(params):
+        if isinstance(item, type(pytest.param(None))):
+            values, marks, ident = item.values, item.marks, item.id
+        else:
+            values, marks, ident = item if isinstance(item, tuple) else (item,), (), None
+        if index >= keep:
+            marks = (*marks, pytest.mark.slow)
+        sample.append(pytest.param(*values, marks=marks, id=ident))
+    return sample
 
 
 def plan_in_process(monkeypatch, argv: list[str], problem_text: str) -> tuple[int, str, str]:

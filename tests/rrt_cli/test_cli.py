@@ -103,7 +103,8 @@ def test_help_lists_every_flag():
 def test_stats_line_is_key_value_on_stderr_then_the_kernels_that_ran():
     done = run_planner(["-seed", "2", "-stats"], SPACE0.read_text(), interpreted=True)
     assert done.returncode == 0
-    line, kernels = done.stderr.decode().splitlines()
+    build, line, kernels = done.stderr.decode().splitlines()
+    assert build == "rrt_cli build: interpreted: RRT_INTERPRETED is set"
     assert line.startswith("rrt_cli stats: ")
     fields = dict(item.split("=", 1) for item in line.split(": ", 1)[1].split())
     assert list(fields) == ["status", "planner", "vehicle", "seed", "iterations", "tree_nodes",

@@ -79,7 +79,7 @@ def test_optimizing_flags_need_an_optimizing_planner(monkeypatch, flags):
 def test_the_validators_json_reports_the_cost_of_a_valid_answer_only(tmp_path):
     from tests.validator.validator_testlib import run_validator
     text = (FAMILY / "pendulum-t5.kp").read_text()
-    planner = [sys.executable, "-m", "rrt_cli", "-seed", "1"]
+    planner = [str(ROOT / "run.sh"), "-seed", "1"]
     done = run_validator(["-json", "--", *planner], text, tmp_path)
     report = json.loads(done.stdout)
     assert report["valid"] and report["cost_kind"] == "duration" and report["cost"] > 0

@@ -116,8 +116,8 @@ def test_every_answer_of_our_planner_validates(problem, seed, vehicle):
 def test_our_planner_through_the_command_on_the_course_maps(tmp_path):
     for name, flags in (("space-1.sw", []), ("space-2.sw", ["-grad"]),
                         ("space-0.sw", ["-left"])):
-        done = run_validator([*flags, "-strict", "-json", "--", sys.executable, "-m", "rrt_cli",
-                              *flags, "-seed", "11"],
+        done = run_validator([*flags, "-strict", "-json", "--", str(ROOT / "run.sh"), *flags,
+                              "-seed", "11"],
                              (ROOT / "tests/validator/corpus/problems" / name).read_text(),
                              tmp_path)
         report = json.loads(done.stdout)

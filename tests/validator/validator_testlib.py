@@ -65,11 +65,11 @@ def load_problem(name: str):
 
 def run_validator(args: list[str], problem_text: str | bytes, cwd: Path,
                   timeout: float = 60) -> subprocess.CompletedProcess:
-    """``python -m validator ARGS`` with the problem on stdin, in ``cwd`` (for tree-viz.pdf)."""
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    """``./rrt-validator ARGS`` as a user runs it, with the problem on stdin, in ``cwd``
+    (for tree-viz.pdf)."""
     data = problem_text.encode() if isinstance(problem_text, str) else problem_text
-    return subprocess.run([sys.executable, "-m", "validator", *args], input=data,
-                          capture_output=True, timeout=timeout, cwd=cwd, env=env)
+    return subprocess.run([str(ROOT / "rrt-validator"), *args], input=data,
+                          capture_output=True, timeout=timeout, cwd=cwd)
 
 
 def python_planner(code: str) -> list[str]:
