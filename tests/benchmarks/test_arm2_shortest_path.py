@@ -13,9 +13,11 @@ from benchmarks.family import FAMILY_DIR
 from cli_common import parse_any_problem
 from planning_core.plan_text import format_plan
 from planning_core.setups import kinoplan_setup
+from tests.conftest import unit_sample
 from validator.checks import validate_plan
 
-PAIRS = [f"arm2-pair{k}" for k in range(1, 6)]
+PAIRS = [f"arm2-pair{k}" for k in (3, 1, 2, 4, 5)]
+"""The family's arm2 problems, the quickest to solve first (the unit run's one)."""
 
 
 @functools.lru_cache(maxsize=None)
@@ -30,7 +32,7 @@ def _open_problem(start, goal) -> str:
             f"goal theta1 {goal[0]} theta2 {goal[1]} within 0.01\n")
 
 
-@pytest.mark.parametrize("name", PAIRS)
+@pytest.mark.parametrize("name", unit_sample(PAIRS))
 def test_the_path_passes_the_validators_checks_and_costs_its_length(name):
     problem, found = solved(name)
     assert found is not None

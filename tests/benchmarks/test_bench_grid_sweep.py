@@ -38,17 +38,18 @@ def test_grid_sweep_planners_are_the_registrys_for_their_vehicle():
 
 def test_grid_optimize_runs_only_optimizing_planners_with_optimize(tmp_path):
     rows, report = _rows(tmp_path, "--preset", "grid-optimize", "--problems",
-                         "course-simple-0", "--seeds", "1", "--time", "1", workers=2)
+                         "course-simple-0", "--seeds", "1", "--time", "0.4", workers=2)
     assert {row.planner for row in rows} == {"sst", "rrtstar", "informed"}
     assert {row.vehicle for row in rows} == {v.value for v in presets.NEW_PLANNERS}
     assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
     # -optimize runs to the limit: the planning clock is past the first solution's.
-    assert all(row.planning_seconds >= 0.9 for row in rows)
+    # (Each finds its first in 0.05 s on simple-0.)
+    assert all(row.planning_seconds >= 0.36 for row in rows)
 
 
 def test_family_optimize_runs_the_optimizing_planners_on_what_they_plan_for(tmp_path):
     rows, _ = _rows(tmp_path, "--preset", "family-optimize", "--problems", "arm2-pair1",
-                    "pendulum-t10", "--seeds", "1", "--time", "1", workers=2)
+                    "pendulum-t10", "--seeds", "1", "--time", "0.6", workers=2)  # first in 0.1 s
     assert {(row.problem, row.planner) for row in rows} == {
         ("arm2-pair1", "rrtstar"), ("arm2-pair1", "informed"), ("pendulum-t10", "sst")}
     assert all(row.solved and row.valid for row in rows), [r.failure for r in rows]
