@@ -35,7 +35,7 @@ def graded(tmp_path_factory):
     out = base / "out"
     status = main(["--submissions", str(submissions), "--problems", str(problems),
                    "--out", str(out), "--modes", ",".join(MODES), "--jobs", "4",
-                   "--timeout", "2"])  # a valid run takes 0.5 s on a loaded machine
+                   "--timeout", "3"])  # a valid run takes 0.5 s at load 4 (4 jobs here)
     db = sqlite3.connect(out / "grades.sqlite")
     db.row_factory = sqlite3.Row
     rows = [dict(row) for row in db.execute("SELECT * FROM runs")]
