@@ -49,8 +49,12 @@ def assert_solved_and_valid(setup, result):
     return text
 
 
-@pytest.mark.parametrize("system", sorted(SMALL))
-@pytest.mark.parametrize("planner", ["blossom", "kpiece", "rgrrt"])
+# Blossom on car1 (a second) runs in CI; in the unit run the test of its held controls
+# below solves car1 with Blossom and validates the answer.
+@pytest.mark.parametrize("planner, system", [
+    pytest.param(planner, system, id=f"{planner}-{system}",
+                 marks=pytest.mark.slow if (planner, system) == ("blossom", "car1") else ())
+    for planner in ("blossom", "kpiece", "rgrrt") for system in sorted(SMALL)])
 def test_planner_solves_each_system_and_the_validator_accepts(planner, system):
     setup, result = solve(planner, SMALL[system], 1)
     text = assert_solved_and_valid(setup, result)
