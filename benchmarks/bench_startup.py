@@ -3,7 +3,7 @@
     python -m benchmarks.bench_startup [--pairs 15] [--problems FILE ...] [--flags=-grad]
                                        [--ours "./run.sh -seed 1" [--ours "OTHER" ...]]
                                        [--theirs "python -m benchmarks.ompl_planner -seed 1"]
-                                       [--page docs/results/startup.md]
+                                       [--seeds] [--page docs/results/startup.md]
 
 What a grader's script pays per run is the whole process: interpreter start-up,
 imports, reading, planning and printing. Each pair runs both commands once with
@@ -12,7 +12,9 @@ first in even pairs, theirs first in odd ones) so that a drift in the machine's
 load hits both alike; one unmeasured run of each comes first. Several ``--ours``
 (e.g. a checkout before and after a change) are measured in the same rounds, the
 first command of each round rotating, each paired with that round's run of
-theirs. Prints, per problem and over all of them, the median seconds of each
+theirs. With ``--seeds`` round r adds ``-seed r`` to every command (the commands name
+no seed then): where the run's length depends on the seed, as a ship's search does,
+the per-round ratios compare like with like and their median spans the seeds. Prints, per problem and over all of them, the median seconds of each
 command, the ratio of the medians (ours over theirs) and the median of the
 per-pair ratios: one table per ``--ours``. The default
 ``theirs`` is OMPL's peer planner, run by this interpreter as the benchmark harness
@@ -71,17 +73,19 @@ def time_once(command: list[str], problem: Path) -> float:
     return seconds
 
 
-def take_turns(commands: list[list[str]], problem: Path, rounds: int) -> list[tuple[float, ...]]:
+def take_turns(commands: list[list[str]], problem: Path, rounds: int,
+               seeds: bool = False) -> list[tuple[float, ...]]:
     """``rounds`` runs of each command, one of each per round, round r starting with
     command r (modulo their number: two commands alternate), after one unmeasured
-    run of each."""
+    run of each; with ``seeds``, round r (from 1) adds ``-seed r`` to each command."""
     for command in commands:
-        time_once(command, problem)
+        time_once(command + (["-seed", "1"] if seeds else []), problem)
     seconds: list[list[float]] = [[] for _ in commands]
     for round_ in range(rounds):
+        seed = ["-seed", str(round_ + 1)] if seeds else []
         for turn in range(len(commands)):
             which = (round_ + turn) % len(commands)
-            seconds[which].append(time_once(commands[which], problem))
+            seconds[which].append(time_once(commands[which] + seed, problem))
     return [tuple(times) for times in seconds]
 
 
@@ -116,8 +120,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--ours", action="append",
                         help="our command (default: ./run.sh -seed 1); repeat it to "
                              "measure several in the same rounds")
-    parser.add_argument("--theirs", default=f"{shlex.quote(_interpreter())} "
-                        "-m benchmarks.ompl_planner -seed 1", help="the peer's command")
+    parser.add_argument("--theirs", default=None, help="the peer's command (default: "
+                        "OMPL's peer planner, python -m benchmarks.ompl_planner -seed 1)")
+    parser.add_argument("--seeds", action="store_true",
+                        help="round r adds -seed r to every command (the default commands "
+                             "then name no seed)")
     parser.add_argument("--page", type=Path, default=None, metavar="FILE",
                         help="also write the tables into this Markdown results page")
     return parser
@@ -140,17 +147,20 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.pairs < 1:
         parser.error("--pairs must be at least 1")
+    seed = "" if args.seeds else " -seed 1"
     ours = [shlex.split(command) + shlex.split(args.flags)
-            for command in args.ours or ["./run.sh -seed 1"]]
-    theirs = shlex.split(args.theirs) + shlex.split(args.flags)
+            for command in args.ours or [f"./run.sh{seed}"]]
+    theirs = shlex.split(args.theirs or f"{shlex.quote(_interpreter())} "
+                         f"-m benchmarks.ompl_planner{seed}") + shlex.split(args.flags)
     load_before = os.getloadavg()[0]
     try:
-        times = {path.stem: take_turns([*ours, theirs], path.resolve(), args.pairs)
+        times = {path.stem: take_turns([*ours, theirs], path.resolve(), args.pairs, args.seeds)
                  for path in args.problems}
     except CommandFailed as error:
         sys.stderr.write(f"bench_startup: {error}\n")
         return 1
-    lines = [f"theirs: {shlex.join(theirs)}", f"{args.pairs} rounds per problem, the "
+    seeded = ", round r with -seed r" if args.seeds else ""
+    lines = [f"theirs: {shlex.join(theirs)}", f"{args.pairs} rounds per problem{seeded}, the "
              "commands taking turns, whole process, medians"]
     for which, command in enumerate(ours):
         lines.append(f"ours:   {shlex.join(command)}")

@@ -3,6 +3,8 @@
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
 from tests.conftest import COURSE_PROBLEMS, run_planner
@@ -106,3 +108,62 @@ def test_huge_declared_size_is_rejected_before_allocating():
     with pytest.raises(ProblemFormatError, match="larger than"):
         parse_problem("100000 100000\n")
     assert math.isfinite(parse_problem(SPACE0).start[0])
+
+
+# ----- the plain reader answers as the reference -------------------------------------
+
+def test_the_plain_reader_takes_the_canonical_layout_and_every_course_file():
+    from planning_core.problem_text import _read_plain
+    assert _read_plain(SPACE0) == parse_problem(SPACE0)
+    # Rows of 3 and 5 cells where 4 and 4 are due: as many cells and line ends in all.
+    assert _read_plain(SPACE0.replace("____\n__#_", "___\n___#_")) is None
+    for path in COURSE_PROBLEMS:
+        text = path.read_text()
+        assert _read_plain(text) is not None, path.name
+        assert _read_plain(format_problem(parse_problem(text))) is not None, path.name
+
+
+_PIECES = st.sampled_from(["_", "#", "*", "@", "\n", "\r\n", " ", "\t", "\n\n", "0", "1", "4",
+                           "3", ".", "5", "e", "+", "-", "x", "\u00a0", "\u0664", "nan", "1e999"])
+
+
+@st.composite
+def _near_plain_texts(draw):
+    """The plain layout of a small map (mostly free), then a few pieces inserted,
+    dropped, swapped or moved (a moved line end makes rows of the wrong widths)."""
+    width, height = draw(st.integers(1, 5)), draw(st.integers(1, 4))
+    rows = ["".join(draw(st.lists(st.sampled_from("____*@#"), min_size=width,
+                                  max_size=width))) for _ in range(height)]
+    rows[-1] = "_" + rows[-1][1:]  # start and goal in the free cell (0, 0)
+    numbers = [draw(st.sampled_from(["0.5", ".5", "0.25", "5e-1", "+0.75", "7.5E-01", "0.9"]))
+               for _ in range(4)]
+    head = draw(st.sampled_from([f"{width} {height}", f"{width}\n{height}"]))
+    text = "\n".join([head, *rows, *numbers]) + "\n"
+    for _ in range(draw(st.integers(0, 3))):
+        at = draw(st.integers(0, len(text)))
+        edit = draw(st.sampled_from(["insert", "drop", "swap", "move"]))
+        piece = draw(_PIECES)
+        if edit == "move" and text[at:at + 1]:
+            to = draw(st.integers(0, len(text) - 1))
+            piece, text = text[at], text[:at] + text[at + 1:]
+            text = text[:to] + piece + text[to:]
+        elif edit == "insert":
+            text = text[:at] + piece + text[at:]
+        elif edit == "drop":
+            text = text[:at] + text[at + len(piece):]
+        else:
+            text = text[:at] + piece + text[at + 1:]
+    return text
+
+
+@settings(max_examples=400, deadline=None)
+@given(text=_near_plain_texts())
+def test_the_plain_reader_answers_as_the_reference_or_leaves_the_text_to_it(text):
+    from planning_core.problem_text import _read_located, _read_plain
+    plain = _read_plain(text)
+    try:
+        reference = _read_located(text)
+    except ProblemFormatError:
+        assert plain is None, text
+        return
+    assert plain is None or plain == reference, text
