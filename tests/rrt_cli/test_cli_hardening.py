@@ -86,9 +86,9 @@ def test_reader_takes_a_stdin_of_exactly_the_cap_whole(monkeypatch):
     assert cli_common.read_problem_text_from_stdin("prog", cap=100_000) == padded
 
 
-# The command at exactly 64 MiB takes a second (parsing the blanks): CI only; the
-# reader tests above take exactly the cap and refuse a byte more, and the case below
-# runs the command one byte past 64 MiB.
+# The command reading and parsing exactly 64 MiB runs in CI; in the unit run the reader
+# tests above take exactly the cap and refuse a byte more, and the command is run one
+# byte past 64 MiB.
 @pytest.mark.parametrize("size, code", [pytest.param(CAP, 0, marks=pytest.mark.slow),
                                         (CAP + 1, 2)])
 def test_the_cap_is_64_mib(size, code):
