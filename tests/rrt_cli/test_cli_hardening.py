@@ -79,7 +79,18 @@ def test_reader_takes_at_most_cap_plus_one_bytes(monkeypatch, capsys):
         err.count("\n") == 1
 
 
-@pytest.mark.parametrize("size, code", [(CAP, 0), (CAP + 1, 2)])
+def test_reader_takes_a_stdin_of_exactly_the_cap_whole(monkeypatch):
+    text = "1\n1\n_\n0.5\n0.5\n0.5\n0.5\n"
+    padded = text + " " * (100_000 - len(text))
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(padded.encode())))
+    assert cli_common.read_problem_text_from_stdin("prog", cap=100_000) == padded
+
+
+# The command reading and parsing exactly 64 MiB runs in CI; in the unit run the reader
+# tests above take exactly the cap and refuse a byte more, and the command is run one
+# byte past 64 MiB.
+@pytest.mark.parametrize("size, code", [pytest.param(CAP, 0, marks=pytest.mark.slow),
+                                        (CAP + 1, 2)])
 def test_the_cap_is_64_mib(size, code):
     # A valid problem padded with blanks to exactly the cap is read; one byte more is not.
     text = SPACE0.encode()

@@ -33,9 +33,14 @@ def _turning(report):
     return next((c for c in report.checks if c.name == "turning"), None)
 
 
-# space-3 takes the planners seconds and tests nothing the other maps do not: CI only.
+# The unit run plans each planner on simple-0, RRT and RRT-Connect on space-1 (obstacles)
+# and R = 2 once; the other maps (space-3 takes seconds) are CI only.
+UNIT_CASES = {("simple-0", planner, "0.5") for planner in ("rrt", "rrtconnect", "rrtstar",
+                                                           "informed")} | {
+    ("space-1", "rrt", "0.5"), ("space-1", "rrtconnect", "0.5"), ("space-1", "rrtconnect", "2")}
 PARAMS = [pytest.param(path, planner, radius, id=f"{path.stem}-{planner}-r{radius}",
-                       marks=pytest.mark.slow if path.stem == "space-3" else ())
+                       marks=() if (path.stem, planner, radius) in UNIT_CASES
+                       else pytest.mark.slow)
           for path, planner, radius in CASES]
 
 
@@ -137,7 +142,7 @@ def test_usage_errors_are_one_line_exit_2(argv, words):
 def test_a_radius_too_big_for_the_map_is_one_line_exit_3(monkeypatch):
     text = COURSE_PROBLEMS[1].read_text()
     status, out, err = _plan(monkeypatch, text, "-radius", "1e6", "-seed", "1",
-                             "-iterations", "300")
+                             "-iterations", "100")
     assert status == 3 and out == ""
     assert len(err.strip().splitlines()) == 1 and "no solution" in err
 
@@ -148,7 +153,7 @@ def test_rrtconnect_keeps_its_time_limit():
     import time
     began = time.monotonic()
     done = run_planner(["-dubins", "-radius", "2", "-planner", "rrtconnect", "-seed", "1",
-                        "-time", "1"], COURSE_PROBLEMS[1].read_text(), timeout=60)
+                        "-time", "0.3"], COURSE_PROBLEMS[1].read_text(), timeout=60)
     assert time.monotonic() - began < 30
     assert done.returncode in (0, 3)
 
@@ -205,7 +210,7 @@ def test_optimizing_planners_answer_valid_dubins_paths_that_cost_no_more(monkeyp
     path = next(p for p in COURSE_PROBLEMS if p.stem == "space-1")
     text = path.read_text()
     status, out, err = _plan(monkeypatch, text, "-planner", planner, "-seed", "2",
-                             "-optimize", "-time", "1", "-stats")
+                             "-optimize", "-time", "0.5", "-stats")
     assert status == 0, err
     setup = grid_setup(parse_problem(text), Vehicle.DUBINS, DubinsOptions(0.5))
     report = validate_plan(setup, out, strict=True)

@@ -49,8 +49,14 @@ def assert_solved_and_valid(setup, result):
     return text
 
 
-@pytest.mark.parametrize("system", sorted(SMALL))
-@pytest.mark.parametrize("planner", ["blossom", "kpiece", "rgrrt"])
+# Blossom on car1 and on the pendulum (the slow pair) runs in CI; in the unit run the
+# held-controls test below solves car1 with Blossom, and the command test the pendulum,
+# each answer validated.
+@pytest.mark.parametrize("planner, system", [
+    pytest.param(planner, system, id=f"{planner}-{system}",
+                 marks=pytest.mark.slow if planner == "blossom" and system in ("car1", "pendulum")
+                 else ())
+    for planner in ("blossom", "kpiece", "rgrrt") for system in sorted(SMALL)])
 def test_planner_solves_each_system_and_the_validator_accepts(planner, system):
     setup, result = solve(planner, SMALL[system], 1)
     text = assert_solved_and_valid(setup, result)

@@ -36,8 +36,9 @@ def assert_solved_and_valid(setup, result):
     assert report.valid, report.first_failure
 
 
-# pendulum: a fraction of a second a seed; the cars: seconds (see the report's medians).
-CASES = [pytest.param(name, seed, marks=() if fast else SLOW, id=f"{name}-{seed}")
+# pendulum: a fraction of a second a seed, seed 2 in the unit run; the cars: seconds (see
+# the report's medians).
+CASES = [pytest.param(name, seed, marks=() if fast and seed == 2 else SLOW, id=f"{name}-{seed}")
          for name, fast in (("pendulum-t3", True), ("pendulum-t5", True),
                             ("pendulum-t10", True), ("car2-corridors", False),
                             ("unicycle-circles", False), ("car1-scene1", False),

@@ -62,11 +62,13 @@ def test_case_in_process(case):
 
 
 def _through_the_command() -> list:
-    """Every case; in the unit run, the first of each vehicle, check, warning and flags
-    (and the binary outputs): each case's verdict is test_case_in_process's business."""
+    """Every case; in the unit run, the first valid and the first invalid one of each
+    vehicle, warning and flags, the first of check 7 (its detail names no line), and the
+    binary outputs: each case's verdict is test_case_in_process's business."""
     seen, params = set(), []
     for case in CASES:
-        key = (case.output.split("/")[0], case.check, bool(case.warning), case.flags)
+        key = (case.output.split("/")[0], case.valid, case.check == 7, bool(case.warning),
+               case.flags)
         quick = key not in seen or "binary" in case.id
         seen.add(key)
         params.append(pytest.param(case, id=case.id, marks=() if quick else pytest.mark.slow))

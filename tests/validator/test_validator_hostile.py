@@ -120,11 +120,13 @@ def test_planner_sleeping_past_the_timeout_exits_3_promptly(tmp_path):
     pid_file = tmp_path / "child.pid"
     planner = ["sh", "-c", f"sleep 60 & echo $! > {pid_file}; sleep 60"]
     began = time.monotonic()
-    done = run_validator(["-timeout", "1", "--", *planner], SPACE0, tmp_path)
+    # 0.5 s: sh has started its child and written the pid in milliseconds
+    done = run_validator(["-timeout", "0.5", "--", *planner], SPACE0, tmp_path)
     elapsed = time.monotonic() - began
     assert done.returncode == 3
     out = done.stdout.decode().splitlines()
-    assert out == ["Solver timed out after 1 s; its process group was killed.", INVALID_VERDICT]
+    assert out == ["Solver timed out after 0.5 s; its process group was killed.",
+                   INVALID_VERDICT]
     assert elapsed < 6
     assert gone(int(pid_file.read_text()))  # the whole group, not just the leader
     assert (tmp_path / "tree-viz.pdf").stat().st_size > 0  # no stale PDF left behind
@@ -156,7 +158,7 @@ def test_planner_trickling_output_forever_ends_by_the_timeout(tmp_path):
     trickle = "import sys, time\nwhile True:\n sys.stdout.write('0 0\\n' * 256)\n " \
               "sys.stdout.flush()\n time.sleep(0.01)"
     began = time.monotonic()
-    done = run_validator(["-noviz", "-timeout", "1", "--", *python_planner(trickle)], SPACE0,
+    done = run_validator(["-noviz", "-timeout", "0.5", "--", *python_planner(trickle)], SPACE0,
                          tmp_path)
     assert done.returncode == 3 and time.monotonic() - began < 6
     assert done.stdout.decode().splitlines()[-1] == INVALID_VERDICT
@@ -209,7 +211,7 @@ def test_planner_leaving_a_child_holding_stdout_does_not_stall_it(tmp_path):
 def test_planner_closing_stdout_and_running_on_times_out(tmp_path):
     planner = python_planner("import os, time; os.close(1); time.sleep(60)")
     began = time.monotonic()
-    done = run_validator(["-noviz", "-timeout", "1", "--", *planner], SPACE0, tmp_path)
+    done = run_validator(["-noviz", "-timeout", "0.5", "--", *planner], SPACE0, tmp_path)
     assert done.returncode == 3 and time.monotonic() - began < 6
 
 

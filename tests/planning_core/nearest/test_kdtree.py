@@ -17,6 +17,7 @@ from planning_core.nearest import kdtree
 from planning_core.nearest.kdtree import KDTree, LinearScan, angle_slack
 from planning_core.nearest.metric import SpaceMetric
 from planning_core.spaces import StateSpace, Variable
+from tests.conftest import unit_sample
 
 PI = math.pi
 
@@ -107,8 +108,14 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
     return tree
 
 
-@pytest.mark.parametrize("name", sorted(SPACES))
-@pytest.mark.parametrize("leaf_capacity", [2, 8])
+# The unit run compares each space once, with leaf capacities 2 and 8 in turn; CI both.
+SPACE_LEAVES = [(name, (2, 8)[k % 2]) for k, name in enumerate(sorted(SPACES))]
+SPACE_LEAVES += [(name, 10 - leaf) for name, leaf in SPACE_LEAVES]
+
+
+@pytest.mark.parametrize("name, leaf_capacity", unit_sample(
+    [pytest.param(name, leaf, id=f"{leaf}-{name}") for name, leaf in SPACE_LEAVES],
+    keep=len(SPACES)))
 def test_equals_linear_scan(name, leaf_capacity):
     compare(SPACES[name](), n_points=400, n_queries=250, leaf_capacity=leaf_capacity,
             seed=len(name) * 10 + leaf_capacity, scan_every=3)

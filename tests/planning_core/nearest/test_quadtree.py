@@ -5,11 +5,13 @@ import random
 import pytest
 
 from planning_core.nearest.quadtree import LinearNearest, QuadtreeNearest
+from tests.conftest import unit_sample
 
 
-@pytest.mark.parametrize("width,height,spread,duplicates", [
-    (10, 9, 1.0, False), (500, 500, 0.2, False), (3, 300, 1.0, True), (10, 10, 0.01, True),
-])
+# The unit run keeps a clustered map without duplicates and a tight cluster with them.
+@pytest.mark.parametrize("width,height,spread,duplicates", unit_sample([
+    (500, 500, 0.2, False), (10, 10, 0.01, True), (10, 9, 1.0, False), (3, 300, 1.0, True),
+], keep=2))
 def test_matches_linear_scan(width, height, spread, duplicates):
     rng = random.Random(width * 7 + height)
     tree, scan = QuadtreeNearest(width, height), LinearNearest()
@@ -33,7 +35,9 @@ def test_empty_structure_raises():
         QuadtreeNearest(5, 5).nearest(1.0, 1.0)
 
 
-@pytest.mark.parametrize("width,height,spread", [(10, 9, 1.0), (200, 20, 0.1), (4, 4, 1.0)])
+# The unit run keeps the strip (its lattice has ties and duplicates too).
+@pytest.mark.parametrize("width,height,spread",
+                         unit_sample([(200, 20, 0.1), (4, 4, 1.0), (10, 9, 1.0)]))
 def test_same_index_as_linear_scan_ties_included(width, height, spread):
     """nearest() is the fast version of LinearNearest's scan: the same index, ties
     (points and queries on a 0.5 lattice, duplicates) to the earliest, while the

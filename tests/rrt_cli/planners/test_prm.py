@@ -19,7 +19,7 @@ from rrt_cli.graph_search import astar
 from rrt_cli.planners import prm, prmstar, rrt
 from rrt_cli.planners.base import PlanStatus, StopCondition
 from rrt_cli.planners.paths import path_length
-from tests.conftest import COURSE_PROBLEMS, run_planner, seed_sweep, solve_on
+from tests.conftest import COURSE_PROBLEMS, run_planner, seed_sweep, solve_on, unit_sample
 from validator.checks import validate_output
 
 PLANNERS = {"prm": prm, "prmstar": prmstar}
@@ -64,9 +64,12 @@ def assert_valid_roadmap_answer(problem: Problem, result) -> None:
     assert path_length(result.trajectory, math.dist) == pytest.approx(shortest, rel=1e-12)
 
 
-# PRM* is the slow half of this 20-seed sweep (seconds per map): marked slow.
+# PRM* is the slow half of this 20-seed sweep (seconds per map), and space-3 the slow
+# map, whose walls the other maps share: marked slow.
 @pytest.mark.parametrize("name", ["prm", pytest.param("prmstar", marks=pytest.mark.slow)])
-@pytest.mark.parametrize("path", COURSE_PROBLEMS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [pytest.param(path, id=path.stem, marks=pytest.mark.slow
+                                               if path.stem == "space-3" else ())
+                                  for path in COURSE_PROBLEMS])
 def test_course_problems_20_seeds_all_valid(path, name):
     problem = parse_problem(path.read_text())
     for seed in SEEDS:
@@ -102,7 +105,7 @@ def test_prmstar_paths_are_at_least_20_percent_shorter_than_rrt():
 ONE_GROWTH = prmstar.PRMStarParams(min_improvement=1.0, min_refined_vertices=0)
 
 
-@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("seed", unit_sample(range(6), keep=2))
 def test_prmstar_refinement_only_ever_shortens_the_path(seed):
     # Same seed, same roadmap up to the first growth; refinement grows it further
     # while a growth gains 3%, so the answer is no longer and its roadmap no smaller.
@@ -210,7 +213,7 @@ def test_limits_end_an_impossible_search(name):
     # unreachable, but only a segment exactly through that point gets across.
     problem = Problem(2, 2, bytes([0, 1, 1, 0]), (0.3, 0.6), (1.5, 1.5))
     result = solve_on(PLANNERS[name], grid_setup(problem, Vehicle.POINT),
-                                  StopCondition(time_limit=30, max_iterations=1500),
+                                  StopCondition(time_limit=30, max_iterations=500),
                                   random.Random(1))
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.trajectory == ()
@@ -232,7 +235,7 @@ def test_goal_on_the_maps_edge_is_nudged_inside(name):
 
 @pytest.mark.parametrize("name", sorted(PLANNERS))
 def test_cli_runs_it_reproducibly_and_refuses_the_spaceship(name):
-    text = COURSE_PROBLEMS[-1].read_text()
+    text = next(p for p in COURSE_PROBLEMS if p.stem == "space-1").read_text()
     first = run_planner(["-planner", name, "-seed", "9"], text)
     second = run_planner(["-planner", name, "-seed", "9"], text)
     assert first.returncode == 0, first.stderr

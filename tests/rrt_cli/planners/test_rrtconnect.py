@@ -17,7 +17,7 @@ from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import rrt, rrtconnect
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner, solve_on
+from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner, solve_on, unit_sample
 from validator.checks import validate_output
 
 SEEDS = range(20)
@@ -58,16 +58,16 @@ def test_generated_maps_valid(name, problem, params):
         assert_valid(problem, result)
 
 
-def test_solves_the_100x100_maze():
+@pytest.mark.parametrize("seed", unit_sample(range(3)))
+def test_solves_the_100x100_maze(seed):
     # Uniform targets need about 80 s here (1.4 million iterations); the time
     # limit is generous so a slow machine does not fail it, the iteration
     # limit is what a regression would hit.
     problem = parse_problem((ROOT / "benchmarks" / "problems" / "maze-100.sw").read_text())
-    for seed in range(3):
-        result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT),
-                                  StopCondition(time_limit=120, max_iterations=100_000),
-                                  random.Random(seed))
-        assert_valid(problem, result)
+    result = solve_on(rrtconnect, grid_setup(problem, Vehicle.POINT),
+                      StopCondition(time_limit=120, max_iterations=100_000),
+                      random.Random(seed))
+    assert_valid(problem, result)
 
 
 @pytest.mark.slow  # a comparison over seeds: seconds

@@ -19,7 +19,8 @@ from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup, kinoplan_setup
 from rrt_cli.planners import PLANNERS, informed, rrtstar
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_DIR, COURSE_PROBLEMS, ROOT, plan_in_process, seed_sweep
+from tests.conftest import (COURSE_DIR, COURSE_PROBLEMS, ROOT, plan_in_process, seed_sweep,
+                            unit_sample)
 from validator.checks import validate_plan
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
@@ -149,7 +150,7 @@ def test_informed_targets_lie_in_the_informed_set_and_pruning_keeps_what_may_imp
         return state
     search = rrtstar.StarSearch(si, pdef, rng, informed.Params(), draw)
     pruning, recorder, pruned = informed.Pruning(sampler.heuristic, 0.05), Recorder(search, si), 0
-    for _ in range(1500):
+    for _ in range(600):  # the first solution near 100, one pruning, 500 informed draws
         if search.iterate():
             size, last = search.tree.size, pruning.pruned_at
             pruning(search)
@@ -183,7 +184,8 @@ def assert_only_hopeless_nodes_were_dropped(search, heuristic):
 @pytest.mark.parametrize("problem", ["space-2.sw", "arm2-pair1.kp"])
 def test_cli_seed_reproduces_an_optimized_answer_bit_for_bit(monkeypatch, name, problem):
     path = COURSE_DIR / problem if problem.endswith(".sw") else FAMILY / problem
-    argv = ["-planner", name, "-seed", "3", "-optimize", "-iterations", "1000"]
+    # 500 iterations: past the first solution, where Informed RRT* draws its own targets
+    argv = ["-planner", name, "-seed", "3", "-optimize", "-iterations", "500"]
     status, out, err = plan_in_process(monkeypatch, argv, path.read_text())
     assert status == 0 and err == "", err
     assert plan_in_process(monkeypatch, argv, path.read_text())[1] == out
@@ -205,7 +207,8 @@ def test_a_start_in_the_goal_region_is_the_answer_alone():
         assert result.status is PlanStatus.SOLVED and result.path == ((1.0, 1.0),)
 
 
-@pytest.mark.parametrize("problem", ["space-3", "arm2-pair1", "rigid2-scene1"])
+@pytest.mark.parametrize("problem", unit_sample(["space-3", "arm2-pair1", "rigid2-scene1"],
+                                                keep=2))
 def test_both_planners_draw_alike_until_the_first_solution(problem):
     # Informed RRT* differs only once a solution exists (the docs say so).
     setup = setup_of(problem)

@@ -19,7 +19,7 @@ from planning_core.setups import grid_setup, kinoplan_setup
 from planning_core.vehicles import Vehicle
 from rrt_cli.planners import PLANNERS, sst
 from rrt_cli.planners.base import PlanStatus, StopCondition
-from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner
+from tests.conftest import COURSE_PROBLEMS, ROOT, run_planner, unit_sample
 from tests.rrt_cli.planners.ship_planner_testlib import GAP_WALL, SHIPS, ZIGZAG
 from tests.rrt_cli.test_family_kinodynamic_planners import KINODYNAMIC_PROBLEMS, SMALL
 from validator.checks import validate_plan
@@ -52,8 +52,11 @@ SMALL_CASES = ([(name, None) for name in sorted(SMALL)]
 MAPS = {"gap-wall": GAP_WALL, "zigzag": ZIGZAG}
 
 
-@pytest.mark.parametrize("name, vehicle", SMALL_CASES,
-                         ids=[f"{n}-{v.value if v else 'family'}" for n, v in SMALL_CASES])
+# The left ship on gap-wall (the slow case) is CI only: zigzag-left plans for it too.
+@pytest.mark.parametrize("name, vehicle", [
+    pytest.param(n, v, id=f"{n}-{v.value if v else 'family'}",
+                 marks=pytest.mark.slow if (n, v) == ("gap-wall", Vehicle.LEFT_SPACESHIP) else ())
+    for n, v in SMALL_CASES])
 def test_small_problems_solved_and_valid(name, vehicle):
     text = SMALL[name] if vehicle is None else MAPS[name]
     _, result, _ = solve_and_validate(text, vehicle, 1)
@@ -79,21 +82,21 @@ def test_with_an_objective_the_cost_only_falls(text, vehicle):
     improvement is cheaper and later than the one before, and the answer is valid."""
     first = solve_and_validate(text, vehicle, 2)[1]
     setup, longer, report = solve_and_validate(text, vehicle, 2, StopCondition(
-        max_iterations=first.stats.iterations + 6000), Objective())
+        max_iterations=first.stats.iterations + 2000), Objective())
     steps = longer.stats.improvements
     assert steps[0][1] == pytest.approx(path_cost(setup.si, first.path, first.path_controls),
                                         rel=1e-12)
-    assert len(steps) > 1, "no improvement in 6000 iterations"
+    assert len(steps) > 1, "no improvement in 2000 iterations"
     assert all(a[0] < b[0] and a[1] > b[1] for a, b in zip(steps, steps[1:]))
     assert report.cost == pytest.approx(steps[-1][1], rel=1e-9) and report.cost < steps[0][1]
-    assert longer.stats.iterations == first.stats.iterations + 6000
+    assert longer.stats.iterations == first.stats.iterations + 2000
 
 
 def test_the_objective_threshold_stops_the_search():
     setup = _setup(SMALL["pendulum"])
     free = sst.solve(setup.si, setup.pdef.__class__(setup.pdef.start, setup.pdef.goal,
                                                     Objective()),
-                     StopCondition(max_iterations=8000), random.Random(2))
+                     StopCondition(max_iterations=4000), random.Random(2))
     costs = [cost for _, cost in free.stats.improvements]
     threshold = costs[1]  # the second solution is good enough
     _, met, _ = solve_and_validate(SMALL["pendulum"], None, 2, objective=Objective(threshold))
@@ -101,9 +104,10 @@ def test_the_objective_threshold_stops_the_search():
     assert met.stats.iterations < free.stats.iterations
 
 
-@pytest.mark.parametrize("text, vehicle", [(SMALL["car2"], None), (ZIGZAG, Vehicle.SPACESHIP),
-                                           (GAP_WALL, Vehicle.LEFT_SPACESHIP)],
-                         ids=["car2", "spaceship", "left"])
+@pytest.mark.parametrize("text, vehicle", unit_sample([
+    pytest.param(SMALL["car2"], None, id="car2"),
+    pytest.param(ZIGZAG, Vehicle.SPACESHIP, id="spaceship"),
+    pytest.param(GAP_WALL, Vehicle.LEFT_SPACESHIP, id="left")], keep=2))
 def test_each_witness_keeps_one_active_node_and_the_rest_is_never_found(text, vehicle):
     setup = _setup(text, vehicle)
     pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
@@ -146,8 +150,8 @@ def test_seed_reproduces_the_output_bit_for_bit():
     text = COURSE_PROBLEMS[1].read_text()
     runs = [run_planner(["-grad", "-planner", "sst", "-seed", seed, *more], text)
             for seed, more in [("3", []), ("3", []), ("4", []),
-                               ("3", ["-optimize", "-iterations", "4000"]),
-                               ("3", ["-optimize", "-iterations", "4000"])]]
+                               ("3", ["-optimize", "-iterations", "1500"]),
+                               ("3", ["-optimize", "-iterations", "1500"])]]
     assert all(run.returncode == 0 for run in runs), [run.stderr for run in runs]
     first, again, other, optimized, optimized_again = (run.stdout for run in runs)
     assert first == again and first != other
