@@ -7,4 +7,9 @@ cd "$(dirname "$0")"
 ./make.sh
 env -u RRT_INTERPRETED .venv/bin/python -c 'from rrt_startup.compiled import activate
 print("test.sh: hot modules:", activate())' >&2
+# The run's own bytecode (pytest's rewritten test modules, the commands the tests start
+# without -I) goes to .build/pycache-tests whatever PYTHONDONTWRITEBYTECODE says: the next
+# run starts warm, and no __pycache__ lands in the source tree.
+export PYTHONPYCACHEPREFIX="$PWD/.build/pycache-tests"
+unset PYTHONDONTWRITEBYTECODE
 exec .venv/bin/python -m pytest -n auto -q "$@"
