@@ -65,6 +65,19 @@ def unit_sample(params, keep: int = 1) -> list:
     return sample
 
 
+def property_pair(check, *strategies, unit: int, full: int, **named) -> tuple:
+    """``check`` as two Hypothesis properties over the same strategies: ``unit`` examples
+    in the unit run and a twin with ``full`` examples, marked slow, in ``./test.sh``.
+    Bind both: ``test_x, test_x_full = property_pair(check_x, st.integers(), unit=50,
+    full=150)``."""
+    from hypothesis import given, settings
+
+    def made(examples: int):
+        return settings(max_examples=examples, deadline=None)(
+            given(*strategies, **named)(check))
+    return made(unit), pytest.mark.slow(made(full))
+
+
 def plan_in_process(monkeypatch, argv: list[str], problem_text: str) -> tuple[int, str, str]:
     """``python -m rrt_cli ARGV < problem`` without a new interpreter: the exit
     status, stdout and stderr."""

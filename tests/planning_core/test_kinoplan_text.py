@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import pytest
-from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planning_core import kinoplan_text
@@ -21,6 +20,7 @@ from planning_core.problem_text import ProblemFormatError
 from planning_core.systems import pendulum
 from planning_core.systems.family import Defaults
 from planning_core.worlds.shapes import Disc, Rect, body_polygon
+from tests.conftest import property_pair
 
 PI = math.pi
 CAR2 = ["kinoplan 1", "system car2", "world 0 0 10 10", "rect 4 4 6 6",
@@ -369,11 +369,8 @@ VOCABULARY = ["", "0", "-1", "1e999", "nan", "pi/0", "-pi/2", "3*pi", "x", "y", 
               "rk4", "control", "bound", "param", "1000001", "9" * 30]
 
 
-@settings(max_examples=400, deadline=None)
-@given(st.sampled_from(EXAMPLE_TEXTS), st.lists(st.tuples(
-    st.integers(0, 10_000), st.sampled_from(["replace", "insert", "delete", "dup"]),
-    st.sampled_from(VOCABULARY)), min_size=1, max_size=4))
-def test_any_edit_gives_a_problem_or_one_format_error(base, edits):
+def check_any_edit(base, edits):
+    """Any edit of a good problem gives a problem or one format error."""
     words = base.replace("\n", " \n ").split(" ")
     for position, edit, word in edits:
         i = position % len(words)
@@ -391,6 +388,13 @@ def test_any_edit_gives_a_problem_or_one_format_error(base, edits):
         assert error.line >= 1 and error.column >= 1 and "\n" not in error.message
     else:
         assert state_valid(problem.system, problem.world, problem.start)
+
+
+EDITS = st.lists(st.tuples(st.integers(0, 10_000), st.sampled_from(
+    ["replace", "insert", "delete", "dup"]), st.sampled_from(VOCABULARY)), min_size=1, max_size=4)
+test_any_edit_gives_a_problem_or_one_format_error, \
+    test_any_edit_gives_a_problem_or_one_format_error_full = property_pair(
+        check_any_edit, st.sampled_from(EXAMPLE_TEXTS), EDITS, unit=130, full=400)
 
 
 def test_a_long_digit_run_is_refused_in_linear_time():

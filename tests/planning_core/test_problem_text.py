@@ -3,11 +3,10 @@
 import math
 
 import pytest
-from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planning_core.problem_text import ProblemFormatError, format_problem, parse_problem
-from tests.conftest import COURSE_PROBLEMS, run_planner
+from tests.conftest import COURSE_PROBLEMS, property_pair, run_planner
 
 SPACE0 = "4\n3\n____\n__#_\n___#\n0.1\n1.54\n3.8\n1.1\n"
 
@@ -156,9 +155,8 @@ def _near_plain_texts(draw):
     return text
 
 
-@settings(max_examples=400, deadline=None)
-@given(text=_near_plain_texts())
-def test_the_plain_reader_answers_as_the_reference_or_leaves_the_text_to_it(text):
+def check_plain_reader(text):
+    """The plain reader answers as the reference or leaves the text to it."""
     from planning_core.problem_text import _read_located, _read_plain
     plain = _read_plain(text)
     try:
@@ -167,3 +165,8 @@ def test_the_plain_reader_answers_as_the_reference_or_leaves_the_text_to_it(text
         assert plain is None, text
         return
     assert plain is None or plain == reference, text
+
+
+test_the_plain_reader_answers_as_the_reference_or_leaves_the_text_to_it, \
+    test_the_plain_reader_answers_as_the_reference_or_leaves_the_text_to_it_full = \
+    property_pair(check_plain_reader, unit=130, full=400, text=_near_plain_texts())

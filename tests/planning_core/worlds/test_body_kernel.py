@@ -15,8 +15,6 @@ import random
 import sys
 
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from rrt_startup import compiled
 from planning_core.worlds import segment_tests
@@ -24,9 +22,10 @@ from planning_core.worlds.body_tests import (BodyTest, clearance, native_kernel,
                                              placed_coordinates)
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.shapes import body_polygon
-from tests.planning_core.worlds.test_body_tests import (OBSTACLES, POSE, check_random_walks,
+from tests.conftest import property_pair
+from tests.planning_core.worlds.test_body_tests import (OBSTACLES, WALKS, check_random_walks,
                                                         poses_of, random_poses)
-from tests.planning_core.worlds.test_continuous_world import BOX, convex, obstacles
+from tests.planning_core.worlds.test_continuous_world import BOX
 
 NAME = "planning_core.worlds._body_kernel"
 
@@ -112,13 +111,16 @@ def test_seeded_walks_meet_as_the_reference_with_the_same_placed_points():
     check_poses(test, [(5.0, 5.0, theta) for theta in angles])
 
 
-@settings(max_examples=150, deadline=None)
-@given(obstacles, st.one_of(st.just(body_polygon("rect", [2, 1])), convex()), st.booleans(),
-       st.lists(POSE, min_size=1, max_size=60))
-def test_the_kernel_meets_as_the_reference_along_any_walk(obs, body, boxed, moves):
+def check_kernel_walk(obs, body, boxed, moves):
+    """The kernel meets as the reference along the walk."""
     kernel_module()
     test = ContinuousWorld(BOX if boxed else None, obs).body_tester(body)
     check_poses(test, poses_of(moves))
+
+
+test_the_kernel_meets_as_the_reference_along_any_walk, \
+    test_the_kernel_meets_as_the_reference_along_any_walk_full = property_pair(
+        check_kernel_walk, *WALKS, unit=50, full=150)
 
 
 def test_with_the_kernel_the_body_test_answers_as_the_shapes_do():

@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 import random
 
-from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.shapes import (ConvexPolygon, Disc, Rect, body_polygon, place,
                                          point_in)
+from tests.conftest import property_pair
 from tests.planning_core.worlds.test_continuous_world import BOX, GRID, convex, obstacles
 
 OBSTACLES = (Rect(4, 0, 5, 3), Disc(8, 8, 1), ConvexPolygon([(2, 6), (4, 6), (3, 8)]),
@@ -131,8 +131,16 @@ def poses_of(moves):
         yield x, y, theta
 
 
-@settings(max_examples=150, deadline=None)
-@given(obstacles, st.one_of(st.just(body_polygon("rect", [2, 1])), convex()), st.booleans(),
-       st.lists(POSE, min_size=1, max_size=60))
-def test_free_answers_as_the_placed_polygon_along_any_walk(obs, body, boxed, moves):
+WALKS = (obstacles, st.one_of(st.just(body_polygon("rect", [2, 1])), convex()), st.booleans(),
+         st.lists(POSE, min_size=1, max_size=60))
+"""Obstacles, a body, boxed or not, and a walk's moves: the walk properties' cases."""
+
+
+def check_walk(obs, body, boxed, moves):
+    """Free answers as the placed polygon along the walk."""
     walk(ContinuousWorld(BOX if boxed else None, obs), body, poses_of(moves))
+
+
+test_free_answers_as_the_placed_polygon_along_any_walk, \
+    test_free_answers_as_the_placed_polygon_along_any_walk_full = property_pair(
+        check_walk, *WALKS, unit=50, full=150)

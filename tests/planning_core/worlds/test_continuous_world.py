@@ -10,7 +10,7 @@ import dataclasses
 import math
 
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume
 from hypothesis import strategies as st
 
 from planning_core.worlds.continuous import OUTSIDE_BOX, ContinuousWorld
@@ -25,6 +25,7 @@ from planning_core.worlds.shapes import (
     place,
     point_in,
 )
+from tests.conftest import property_pair
 
 BOX = Rect(0, 0, 10, 10)
 BODY = body_polygon("rect", [2, 1])          # x in [-1, 1], y in [-0.5, 0.5] in its own frame
@@ -178,7 +179,5 @@ def check_first_obstacle(obs, shape, boxed, px, py):
 
 
 WORLD_CASES = (obstacles, queries, st.booleans(), GRID, GRID)
-test_first_obstacle_equals_brute_force = settings(max_examples=80, deadline=None)(
-    given(*WORLD_CASES)(check_first_obstacle))
-test_first_obstacle_equals_brute_force_deep = pytest.mark.slow(
-    settings(max_examples=3000, deadline=None)(given(*WORLD_CASES)(check_first_obstacle)))
+test_first_obstacle_equals_brute_force, test_first_obstacle_equals_brute_force_deep = \
+    property_pair(check_first_obstacle, *WORLD_CASES, unit=80, full=3000)
