@@ -7,6 +7,7 @@ import pytest
 from planning_core.problem import Problem
 from planning_core.problem_text import parse_problem
 from planning_core.worlds.grid import GridWorld, connected_free_cells, segment_meets_cell
+from tests.conftest import unit_sample
 
 SPACE0 = "4\n3\n____\n__#_\n___#\n0.1\n1.54\n3.8\n1.1\n"
 
@@ -24,10 +25,11 @@ def densely_sampled_hit(world: GridWorld, x0, y0, x1, y1, samples=4000):
     return None
 
 
-def test_exact_walk_finds_every_collision_dense_sampling_finds():
+@pytest.mark.parametrize("worlds", unit_sample([15, 40]))
+def test_exact_walk_finds_every_collision_dense_sampling_finds(worlds):
     rng = random.Random(11)
     checked = 0
-    for _ in range(40):
+    for _ in range(worlds):
         world = random_world(rng)
         for _ in range(40):
             pts = [rng.uniform(-0.5, 8.5), rng.uniform(-0.5, 6.5), rng.uniform(-0.5, 8.5),
@@ -41,7 +43,7 @@ def test_exact_walk_finds_every_collision_dense_sampling_finds():
             if exact is None:
                 assert sampled is None
             checked += 1
-    assert checked == 1600
+    assert checked == worlds * 40
 
 
 def test_corner_cut_missed_by_sampling_is_caught_exactly():

@@ -19,7 +19,7 @@ from planning_core.setups import kinoplan_setup
 from planning_core.worlds.continuous import CLEARANCE_MARGIN, ContinuousWorld
 from planning_core.worlds.link_tests import LinkTests
 from planning_core.worlds.shapes import SNAP
-from tests.conftest import ROOT
+from tests.conftest import ROOT, unit_sample
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
 SHAPES = """kinoplan 1
@@ -202,8 +202,9 @@ def check_motions(rng: random.Random, si, old_valid, old_reach, count: int,
     assert 0 < hits < count and tested < total / 2  # blocked and free motions; skips
 
 
-def test_valid_reach_joints_and_motions_answer_as_before(monkeypatch):
-    check_against_reference(seed=11, count=800,
+@pytest.mark.parametrize("count", unit_sample([300, 800]))  # 300: blocked and free motions
+def test_valid_reach_joints_and_motions_answer_as_before(monkeypatch, count):
+    check_against_reference(seed=11, count=count,
                             tests=count_calls(monkeypatch, LinkTests, "in_bounds"))
 
 
