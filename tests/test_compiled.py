@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from rrt_startup import compiled
+from tests.conftest import unit_sample
 from tests.test_launch_scripts import checkout_copy, launch
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -279,7 +280,9 @@ def test_the_compiled_body_test_answers_as_the_shapes_do():
                                    "planning_core.worlds._body_kernel"]
 
 
-def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
+@pytest.mark.parametrize("motions, segments", unit_sample([(300, 2000), (800, 5000)]))
+def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced(motions,
+                                                                             segments):
     """tests/planning_core/worlds/test_link_tests.py's seeded states and motions and
     test_segment_tests.py's segments, with the compiled build (the unit run imports
     the interpreted source)."""
@@ -288,7 +291,8 @@ def test_the_compiled_link_and_segment_tests_answer_as_the_code_they_replaced():
              "from tests.planning_core.worlds.test_link_tests import check_against_reference\n"
              "from tests.planning_core.test_angles import check_remainder\n"
              "from tests.planning_core.worlds.test_segment_tests import check_segments\n"
-             "check_against_reference(seed=7, count=800)\ncheck_segments(seed=8)\n"
+             f"check_against_reference(seed=7, count={motions})\n"
+             f"check_segments(seed=8, count={segments})\n"
              "check_remainder(seed=9)\n"
              "import planning_core.worlds.link_tests as t\nprint(t.__file__)\n")
     done = run_probe(probe, timeout=120)

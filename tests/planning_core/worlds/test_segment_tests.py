@@ -7,10 +7,13 @@ from __future__ import annotations
 import math
 import random
 
+import pytest
+
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.segment_tests import nearer
 from planning_core.worlds.shapes import (ConvexPolygon, Disc, Rect, Segment, point_distance,
                                          segment_gap)
+from tests.conftest import unit_sample
 
 OBSTACLES = (Rect(0.6, 0.6, 1.3, 1.3), Disc(1.6, -0.45, 0.2), Disc(-1.3, 0.5, 0.25),
              ConvexPolygon(((-1.0, -1.5), (0.0, -1.8), (0.2, -0.9))), Rect(-1.7, -1.7, -1.2, -1.2))
@@ -82,8 +85,9 @@ def check_segments(seed: int, count: int = 5000) -> None:
         assert count / 10 < free_count < count * 9 / 10  # both answers were exercised
 
 
-def test_free_and_gap_answer_as_the_shapes_do():
-    check_segments(seed=5)
+@pytest.mark.parametrize("count", unit_sample([2000, 5000]))
+def test_free_and_gap_answer_as_the_shapes_do(count):
+    check_segments(seed=5, count=count)
 
 
 def test_nearer_is_the_min_with_the_hypot():
