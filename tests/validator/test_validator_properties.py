@@ -19,6 +19,8 @@ from validator.checks import INVALID_VERDICT, VALID_VERDICT, validate_output
 from validator.cli import decode_output
 from validator_testlib import ROOT, load_problem, run_validator
 
+from tests.conftest import unit_sample
+
 SPACE0 = load_problem("space-0.sw")   # start (0.1, 1.54), goal (3.8, 1.1)
 VEHICLES = list(Vehicle)
 
@@ -113,14 +115,16 @@ def test_every_answer_of_our_planner_validates(problem, seed, vehicle):
     assert report.warnings == []
 
 
-def test_our_planner_through_the_command_on_the_course_maps(tmp_path):
-    for name, flags in (("space-1.sw", []), ("space-2.sw", ["-grad"]),
-                        ("space-0.sw", ["-left"])):
-        done = run_validator([*flags, "-strict", "-json", "--", str(ROOT / "run.sh"), *flags,
-                              "-seed", "11"],
-                             (ROOT / "tests/validator/corpus/problems" / name).read_text(),
-                             tmp_path)
-        report = json.loads(done.stdout)
-        assert done.returncode == 0 and report["valid"], report
-        assert report["planner"]["exit_code"] == 0
-        assert (tmp_path / "tree-viz.pdf").stat().st_size > 1000
+# One vehicle in the unit run: the corpus takes every vehicle through the command there.
+@pytest.mark.parametrize("name, flags", unit_sample([
+    pytest.param("space-1.sw", [], id="point"), pytest.param("space-2.sw", ["-grad"], id="grad"),
+    pytest.param("space-0.sw", ["-left"], id="left")]))
+def test_our_planner_through_the_command_on_the_course_maps(tmp_path, name, flags):
+    done = run_validator([*flags, "-strict", "-json", "--", str(ROOT / "run.sh"), *flags,
+                          "-seed", "11"],
+                         (ROOT / "tests/validator/corpus/problems" / name).read_text(),
+                         tmp_path)
+    report = json.loads(done.stdout)
+    assert done.returncode == 0 and report["valid"], report
+    assert report["planner"]["exit_code"] == 0
+    assert (tmp_path / "tree-viz.pdf").stat().st_size > 1000
