@@ -28,7 +28,7 @@ def test_published_variant_without_goal_steering_is_valid():
         solve_and_validate(COURSE_PROBLEMS[1].read_text(), Vehicle.SPACESHIP, seed, params)
 
 
-@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("seed", unit_sample(range(3)))  # seeds 1-2 in CI
 def test_maze_solved_along_the_free_cells(seed):
     """The default measures the goal distance along the corridors; the paper's
     straight line is kept as an option and still gives valid answers."""
