@@ -157,6 +157,11 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         """As :meth:`new_nearest`."""
         return self.new_nearest()
 
+    @staticmethod
+    def state_target(target: Sequence[float], rng: random.Random) -> Sequence[float]:
+        """``target`` itself: the family's targets are whole states already (no draw)."""
+        return target
+
     def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
         """The motion's duration: K (the control's last value) slices of dt."""
         return control[-1] * self.system.dt

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
-from planning_core.samplers import randint
+from planning_core.samplers import randint, uniform
 from planning_core.worlds.grid import GridWorld, SegmentHit
 
 TYPE_CHECKING = False
@@ -145,6 +145,9 @@ class GridControlOptions:
     position's in :meth:`GridControlSpaceInformation.state_distance`."""
     selection_radius: float = 0.25
     """SST: a node is chosen as the cheapest active one this close to a target, map units."""
+    target_speed: float = 1.0
+    """SST's targets are whole states: each velocity component uniform in
+    ``[-target_speed, target_speed]`` (map units per step) beside the target position."""
     pruning_radius: float = 0.25
     """SST: a witness's region, map units (at most one active node in each)."""
 
@@ -158,9 +161,9 @@ class GridControlOptions:
             if value is not None and not value > 0.0:
                 raise ValueError(f"{name} must be positive")
         if not (self.selection_radius >= 0.0 and self.pruning_radius >= 0.0
-                and self.velocity_weight >= 0.0):
-            raise ValueError("selection_radius, pruning_radius and velocity_weight "
-                             "must be >= 0")
+                and self.velocity_weight >= 0.0 and self.target_speed >= 0.0):
+            raise ValueError("selection_radius, pruning_radius, velocity_weight and "
+                             "target_speed must be >= 0")
         if not all(thrust > 0.0 for thrust in self.reach_thrusts):
             raise ValueError("reach_thrusts must be positive")
 
@@ -250,6 +253,13 @@ class GridControlSpaceInformation:
         """:meth:`space` with the velocities weighed (``velocity_weight``)."""
         return self.system.state_space(self.world.width, self.world.height,
                                        self.options.velocity_weight)
+
+    def state_target(self, target: Sequence[float], rng: random.Random) -> tuple:
+        """``target`` (a position) as a whole state: a velocity drawn uniformly in
+        ``[-target_speed, target_speed]`` per component (x first)."""
+        speed = self.options.target_speed
+        return (target[0], target[1], (2.0 * uniform(rng) - 1.0) * speed,
+                (2.0 * uniform(rng) - 1.0) * speed)
 
     def new_state_nearest(self) -> NearestIndex:
         """An empty kd-tree ordered by :meth:`state_distance`."""

@@ -171,6 +171,11 @@ class ControlSpaceInformation(Protocol):
     def new_state_nearest(self) -> NearestIndex:
         """An empty index ordered by :meth:`state_distance`."""
 
+    def state_target(self, target: Sequence[float], rng: random.Random) -> Sequence[float]:
+        """A target (:meth:`sample_target`, :meth:`goal_target`, a frontier point) as a
+        whole state, for SST's selection by :meth:`state_distance` (the grid's ships:
+        the position with a random velocity; the family: the target itself)."""
+
     def motion_cost(self, a: Sequence[float], control: Any, b: Sequence[float]) -> float:
         """The cost of the motion ``a`` -> ``b`` under ``control`` (the grid's ships:
         the distance of its positions; the family: its duration, K slices of dt)."""

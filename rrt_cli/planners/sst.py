@@ -3,9 +3,10 @@ optimal sampling-based kinodynamic planning", IJRR 35(5), 2016), for kinodynamic
 systems: asymptotically near-optimal without a steering function.
 
 Each iteration draws a target (the goal with probability ``goal_bias``, else
-``si.sample_target``) and selects the *best near* node: of the active nodes within
-``selection_radius`` of the target, the cheapest (the path's cost from the start,
-``si.motion_cost`` summed); none there, the nearest active node. From it, a random
+``si.sample_target``), a whole state (``si.state_target``: the ships' positions get a
+random velocity), and selects the *best near* node: of the active nodes within
+``selection_radius`` of the target by ``si.state_distance``, the cheapest (the path's
+cost from the start, ``si.motion_cost`` summed); none there, the nearest active node. From it, a random
 control held for a random duration (``si.random_motion``: Monte Carlo propagation,
 no steering). A new state joins the tree only if it is the cheapest so far in its
 *witness*'s region: the witnesses are states at least ``pruning_radius`` apart, the
@@ -97,7 +98,7 @@ class _Search:
         """Not pruned."""
         self.pinned = [False]
         """On the best solution's path: never pruned."""
-        self.nodes: NearestIndex = si.new_nearest()
+        self.nodes: NearestIndex = si.new_state_nearest()
         self.nodes.add(start)
         self.witnesses: NearestIndex = si.new_state_nearest()
         self.witnesses.add(start)
@@ -155,14 +156,14 @@ class _Search:
 
     def target(self) -> Any:
         """The goal (``goal_bias``); until the first solution, else mostly a frontier
-        point (``frontier_targets``); else a uniform target."""
+        point (``frontier_targets``); else a uniform target: as a whole state."""
         si, rng = self.si, self.rng
         if uniform(rng) < self.goal_bias:
-            return si.goal_target(self.goal, rng)
+            return si.state_target(si.goal_target(self.goal, rng), rng)
         frontier = self.frontier
         if frontier and self.best is None and uniform(rng) < self.frontier_share:
-            return frontier.sample(rng)
-        return si.sample_target(rng)
+            return si.state_target(frontier.sample(rng), rng)
+        return si.state_target(si.sample_target(rng), rng)
 
     def add(self, parent: int, state: Any, control: Any, cost: float) -> int:
         if self.frontier is not None and self.best is None:

@@ -212,12 +212,17 @@ def test_the_best_path_stays_in_the_printed_tree_when_its_nodes_turn_inactive():
 
 def test_frontier_targets_on_the_grid_until_the_first_solution():
     """Before a solution the targets are frontier points (free cells beside a node's);
-    after it none are; the family's worlds offer no frontier."""
+    after it none are; the family's worlds offer no frontier. A ship's target is a whole
+    state: the point with a velocity within the target speed."""
     setup = _setup(GAP_WALL, Vehicle.SPACESHIP)
     search = sst._Search(setup.si, setup.pdef, random.Random(1),
                          sst.SSTParams(goal_bias=0.0, frontier_targets=1.0))
     start_cell = (int(setup.pdef.start[0]), int(setup.pdef.start[1]))
-    cells = {(int(x), int(y)) for x, y in (search.target() for _ in range(50))}
+    targets = [search.target() for _ in range(50)]
+    speed = setup.si.options.target_speed
+    assert all(len(t) == 4 and max(abs(t[2]), abs(t[3])) <= speed for t in targets)
+    assert len({t[2:] for t in targets}) == 50  # a velocity drawn for each
+    cells = {(int(x), int(y)) for x, y, _, _ in targets}
     assert cells == {(start_cell[0] + dx, start_cell[1] + dy)
                      for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))}
     search.best = 0
