@@ -14,9 +14,10 @@ load hits both alike; one unmeasured run of each comes first. Several ``--ours``
 first command of each round rotating, each paired with that round's run of
 theirs. With ``--seeds`` round r adds ``-seed r`` to every command (the commands name
 no seed then): where the run's length depends on the seed, as a ship's search does,
-the per-round ratios compare like with like and their median spans the seeds. Prints, per problem and over all of them, the median seconds of each
-command, the ratio of the medians (ours over theirs) and the median of the
-per-pair ratios: one table per ``--ours``. The default
+the per-round ratios compare like with like and their median spans the seeds. Prints,
+per problem and over all of them, the median seconds of each command, the ratio of the
+medians (ours over theirs) and the median of the per-pair ratios: one table per
+``--ours``. The default
 ``theirs`` is OMPL's peer planner, run by this interpreter as the benchmark harness
 runs it (it needs the ``ompl`` package). Tables on stdout, and with ``--page`` also
 in a Markdown results page with the command that made it; a command that fails is
