@@ -7,14 +7,14 @@ Each iteration draws a target (the goal with probability ``goal_bias``, else
 random velocity), and selects the *best near* node: of the active nodes within
 ``selection_radius`` of the target by ``si.state_distance``, the cheapest (the path's
 cost from the start, ``si.motion_cost`` summed); none there, the nearest active node.
-From it, a random control held for a random duration (``si.random_motion``: Monte
-Carlo propagation, no steering). A new state joins the tree only if it is the
-cheapest so far in its *witness*'s region: the witnesses are states at least
-``pruning_radius`` apart, the nearest one within ``pruning_radius`` (else the new
-state becomes one), each with at most one active node, its representative. The representative it replaces turns
-inactive: no longer selected nor found by nearest queries (it leaves the index);
-an inactive node without children is pruned from the tree, and its parent too
-once that is inactive and childless, and so on up.
+From it, a random control held for a random duration (``si.random_motion``: Monte Carlo
+propagation, no steering). A new state joins the tree only if it is the cheapest so far
+in its *witness*'s region: the witnesses are states at least ``pruning_radius`` apart,
+the nearest one within ``pruning_radius`` (else the new state becomes one), each with at
+most one active node, its representative. The representative it replaces turns inactive:
+no longer selected nor found by nearest queries (it leaves the index); an inactive node
+without children is pruned from the tree, and its parent too once that is inactive and
+childless, and so on up.
 
 Departures from OMPL's ``control::SST`` (read for the algorithm, not copied):
 a random motion cut short by an invalid slice is kept, up to its last valid slice
