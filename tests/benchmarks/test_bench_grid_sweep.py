@@ -73,10 +73,11 @@ def test_the_acceptance_sweep_on_the_course_maps(tmp_path, preset):
     """Issue 30's acceptance presets on the course maps, 2 seeds (the 20-seed runs are
     the commands of docs/optimal-planning.md#acceptance-sweeps: 800 and 600 runs, past
     this suite's budget): no answer invalid and every run solved, but the left-only
-    ship's SST, which misses a map now and then within its limit (here 2 s with
-    -optimize, 30 s without): at least half."""
+    ship's SST, whose first solution on space-3 takes seconds: at least half. The limit
+    is the acceptance's: 5 s with -optimize (the spaceship's SST on space-3 takes 1-1.5 s
+    quiet, more in CI beside other tests), 30 s without."""
     out = tmp_path / "out"
-    limit = ["--time", "2"] if preset == "grid-optimize" else []  # -optimize runs it all
+    limit = ["--time", "5"] if preset == "grid-optimize" else []  # -optimize runs it all
     assert main(["--preset", preset, "--problems", "course-*", "--seeds", "2", *limit,
                  *FAST[:-2], "--workers", "2", "--out", str(out)]) == 0
     rows = read_csv(out / "runs.csv")
