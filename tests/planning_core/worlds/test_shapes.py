@@ -40,6 +40,7 @@ from planning_core.worlds.shapes import (
     segment_rect_intersect,
     segments_intersect,
 )
+from tests.conftest import property_pair
 
 UP = math.nextafter(1.0, 2.0)  # the float just above 1
 SQ = ConvexPolygon([(0, 0), (1, 0), (1, 1), (0, 1)])  # the unit square
@@ -542,10 +543,12 @@ DEEP = settings(max_examples=3000, deadline=None)
 
 
 def prop(*strategies):
-    """The property with FAST examples, and a ``<name>_deep`` twin (DEEP ones, slow marker)."""
+    """The property with FAST's examples, and a ``<name>_deep`` twin with DEEP's (slow
+    marker): :func:`tests.conftest.property_pair` under a decorator."""
     def register(check):
-        globals()[check.__name__ + "_deep"] = pytest.mark.slow(DEEP(given(*strategies)(check)))
-        return FAST(given(*strategies)(check))
+        unit, globals()[check.__name__ + "_deep"] = property_pair(
+            check, *strategies, unit=FAST.max_examples, full=DEEP.max_examples)
+        return unit
     return register
 
 
