@@ -155,15 +155,19 @@ class _Search:
         return None
 
     def target(self) -> Any:
+        """:meth:`point_target` as a whole state (``si.state_target``)."""
+        return self.si.state_target(self.point_target(), self.rng)
+
+    def point_target(self) -> Any:
         """The goal (``goal_bias``); until the first solution, else mostly a frontier
-        point (``frontier_targets``); else a uniform target: as a whole state."""
+        point (``frontier_targets``); else a uniform target."""
         si, rng = self.si, self.rng
         if uniform(rng) < self.goal_bias:
-            return si.state_target(si.goal_target(self.goal, rng), rng)
+            return si.goal_target(self.goal, rng)
         frontier = self.frontier
         if frontier and self.best is None and uniform(rng) < self.frontier_share:
-            return si.state_target(frontier.sample(rng), rng)
-        return si.state_target(si.sample_target(rng), rng)
+            return frontier.sample(rng)
+        return si.sample_target(rng)
 
     def add(self, parent: int, state: Any, control: Any, cost: float) -> int:
         if self.frontier is not None and self.best is None:
