@@ -2,7 +2,8 @@
 ``rrt_cli`` and ``benchmarks/ompl_planner.py`` (OMPL's Python bindings).
 
     python -m benchmarks.ompl_cpp_planner [-grad] [-left]
-        [-planner rrt|rrtconnect|rrtstar|informed|sst] [-seed N] [-time S] [-stats]
+        [-planner rrt|rrtconnect|prm|prmstar|rrtstar|informed|kpiece|sst] [-seed N]
+        [-time S] [-stats]
         [-optimize] < problem
 
 Reads a ``.sw`` or ``kinoplan 1`` problem on stdin, hands it as flat text to the C++
@@ -13,9 +14,10 @@ passes the program's stats line (planning time, tree size, iterations, cost, fir
 solution) to stderr and, with ``-optimize``, its progress line (each improvement's time
 and cost, as ``rrt_cli``'s).
 
-What plans for what: the point vehicle ``rrt``, ``rrtconnect``, ``rrtstar``, ``informed``;
-the ships ``rrt`` (control) and ``sst``; arm2 and rigid2 ``rrt``, ``rrtconnect``,
-``rrtstar``, ``informed``; the kinodynamic family ``rrt`` (control) and ``sst``.
+What plans for what: the point vehicle ``rrt``, ``rrtconnect``, ``prm``, ``prmstar``,
+``rrtstar``, ``informed``; the ships ``rrt`` (control), ``kpiece`` and ``sst``; arm2 and
+rigid2 ``rrt``, ``rrtconnect``, ``prm``, ``prmstar``, ``rrtstar``, ``informed``; the
+kinodynamic family ``rrt`` (control), ``kpiece`` and ``sst``.
 ``-optimize`` applies to ``rrtstar``, ``informed`` and ``sst``.
 
 Exit status: 0 solved, 2 bad usage or bad problem, 3 no solution within the time
@@ -37,13 +39,14 @@ from planning_core.vehicles import Vehicle
 EXIT_NO_PROGRAM = 4
 OPTIMIZING = ("rrtstar", "informed", "sst")
 GRID_MODES = {
-    Vehicle.POINT: {"rrt": "point", "rrtconnect": "rrtconnect", "rrtstar": "rrtstar",
-                    "informed": "informed"},
-    Vehicle.SPACESHIP: {"rrt": "ship", "sst": "sst"},
-    Vehicle.LEFT_SPACESHIP: {"rrt": "left", "sst": "sst-left"},
+    Vehicle.POINT: {"rrt": "point", "rrtconnect": "rrtconnect", "prm": "prm",
+                    "prmstar": "prmstar", "rrtstar": "rrtstar", "informed": "informed"},
+    Vehicle.SPACESHIP: {"rrt": "ship", "kpiece": "kpiece", "sst": "sst"},
+    Vehicle.LEFT_SPACESHIP: {"rrt": "left", "kpiece": "kpiece-left", "sst": "sst-left"},
 }
 """grid_ompl's mode per vehicle and planner."""
-FAMILY_PLANNERS = {True: ("rrt", "sst"), False: ("rrt", "rrtconnect", "rrtstar", "informed")}
+FAMILY_PLANNERS = {True: ("rrt", "kpiece", "sst"),
+                   False: ("rrt", "rrtconnect", "prm", "prmstar", "rrtstar", "informed")}
 """family_ompl's planners for a kinodynamic (True) or geometric system."""
 
 
@@ -53,7 +56,8 @@ def build_parser():
                                             "stdin; print the answer on stdout.")
     add_vehicle_flags(parser, "vehicle (default: point vehicle)")
     parser.add_argument("-planner", default="rrt",
-                        choices=sorted({"rrt", "rrtconnect", "rrtstar", "informed", "sst"}))
+                        choices=sorted({"rrt", "rrtconnect", "prm", "prmstar", "rrtstar",
+                                        "informed", "kpiece", "sst"}))
     parser.add_argument("-seed", type=int, default=None)
     parser.add_argument("-time", type=positive_float, default=30.0, metavar="S")
     parser.add_argument("-stats", action="store_true",

@@ -55,7 +55,8 @@ def family_input(problem_text: str) -> bytes:
     """``family_ompl``'s input: keyword-led lines of numbers (floats by ``repr``, so
     exact): the variables (angle flag, low, high), the metric groups (weight, count,
     indices), the check step (geometric) or the dynamics (scheme, DT, KMIN, KMAX, the
-    pendulum's g or car1's L), the controls' bounds and our SST's radii (kinodynamic), the
+    pendulum's g or car1's L), the controls' bounds, our SST's radii and our KPIECE1's grid
+    (each axis: variable, low, scale: the cell is floor((value - low) * scale)) (kinodynamic), the
     arm's params or the body's vertices (none for the pendulum), the world box, the
     obstacles (R x0 y0 x1 y1 | C cx cy r | P n x y ...), the start, the goal (tolerance,
     count, index value ...)."""
@@ -92,7 +93,8 @@ def _numbers(values) -> str:
 
 
 def _system_lines(problem) -> list[str]:
-    """The check step or the dynamics, controls and SST radii; the arm or the body."""
+    """The check step or the dynamics, controls, SST radii and KPIECE1's grid; the arm or
+    the body."""
     from planning_core.setups import kinoplan_setup
     system = problem.system
     if system.kinodynamic:
@@ -103,6 +105,9 @@ def _system_lines(problem) -> list[str]:
                  f"controls {len(system.controls)} "
                  f"{_numbers(v for bounds in system.controls for v in bounds)}",
                  f"sst {si.selection_radius!r} {si.pruning_radius!r}"]
+        axes = system.projection_axes(si.options.projection_cells)
+        lines.append(f"kpiece {len(axes)} " + " ".join(
+            f"{index} {float(low)!r} {float(scale)!r}" for index, low, scale in axes))
     else:
         lines = [f"check {system.check!r}"]
     if system.name == "arm2":

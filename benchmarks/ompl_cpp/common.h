@@ -6,7 +6,10 @@
 
 #include <ompl/base/OptimizationObjective.h>
 #include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/ProjectionEvaluator.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
 #include <ompl/control/planners/sst/SST.h>
+#include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/util/Console.h>
@@ -48,6 +51,12 @@ struct Run {
 
     ompl::base::PlannerTerminationCondition condition() {
         return ompl::base::PlannerTerminationCondition([this] { return poll(); });
+    }
+
+    // The limit alone, polls not counted: for PRM, whose solution-checking thread polls
+    // the condition beside its roadmap's (report() then takes the vertices added).
+    ompl::base::PlannerTerminationCondition timeCondition() const {
+        return ompl::base::PlannerTerminationCondition([this] { return seconds() >= limit; });
     }
 
     // -optimize: a threshold of 0 is never met, so the planner runs to the limit;
@@ -108,6 +117,45 @@ inline ompl::base::PlannerPtr sstPlanner(const ompl::control::SpaceInformationPt
     planner->setSelectionRadius(selection);
     planner->setPruningRadius(pruning);
     run.bestCost = [planner] { return planner->best(); };
+    return planner;
+}
+
+// PRM (k = 10) or PRM* (k = e (1 + 1/d) log n), OMPL's; with the objective's threshold
+// infinite (the caller's setThreshold, no -optimize) solve() ends at the first roadmap
+// path from start to goal, as ours; its solution check runs in a thread of its own,
+// polling every millisecond.
+inline std::shared_ptr<ompl::geometric::PRM> prmPlanner(const ompl::base::SpaceInformationPtr &info,
+                                                        bool star) {
+    return std::make_shared<ompl::geometric::PRM>(info, star);
+}
+
+// KPIECE1's grid as ours: the projection writes each coordinate already scaled to cells
+// ((value - low) * scale, our AxesProjection), so every cell is 1 wide.
+class ScaledProjection : public ompl::base::ProjectionEvaluator {
+public:
+    using Project = std::function<void(const ompl::base::State *, double *)>;
+    ScaledProjection(const ompl::base::StateSpacePtr &space, unsigned dimension, Project project)
+        : ompl::base::ProjectionEvaluator(space), dimension_(dimension),
+          project_(std::move(project)) {}
+    unsigned int getDimension() const override { return dimension_; }
+    void defaultCellSizes() override { cellSizes_.assign(dimension_, 1.0); }
+    void project(const ompl::base::State *state,
+                 Eigen::Ref<Eigen::VectorXd> projection) const override {
+        double out[8];
+        project_(state, out);
+        for (unsigned i = 0; i < dimension_; ++i) projection[i] = out[i];
+    }
+private:
+    unsigned dimension_;
+    Project project_;
+};
+
+// Control KPIECE1 with OMPL's defaults (goal bias 0.05, border fraction 0.8, cell score
+// factors 0.9 and 0.45, 30 close samples: ours too) over the given projection.
+inline ompl::base::PlannerPtr kpiecePlanner(const ompl::control::SpaceInformationPtr &info,
+                                            const ompl::base::ProjectionEvaluatorPtr &projection) {
+    auto planner = std::make_shared<ompl::control::KPIECE1>(info);
+    planner->setProjectionEvaluator(projection);
     return planner;
 }
 

@@ -12,16 +12,19 @@
 //     tolerance;
 //   geometric (arm2, rigid2): motions of our metric's length d checked at the
 //     n = max(1, ceil(d / check)) samples after the start (SPEC 5.2); RRT (goal bias
-//     0.05), RRTConnect, RRT* or Informed RRT* (OMPL's defaults) minimizing path length
-//     in our metric (OMPL's objective where OMPL's distance is our metric and the planner
-//     is RRT*, else one calling our metric, as the Python peer);
+//     0.05), RRTConnect, PRM, PRM*, RRT* or Informed RRT* (OMPL's defaults) minimizing
+//     path length in our metric (OMPL's objective where OMPL's distance is our metric and
+//     the planner is RRT* or a PRM, else one calling our metric, as the Python peer; PRM
+//     and PRM* end at their first path, as ours);
 //   kinodynamic (pendulum, car2, unicycle, car1): our slice (SPEC 5.2's euler or rk4,
 //     the same float operations in the same order as planning_core/integrators.py) as
 //     the propagator, OMPL's step DT, KMIN..KMAX steps a control; control RRT (goal bias
-//     0.05) or SST (our SST's radii, from the input) minimizing the duration: a weight-0
+//     0.05), KPIECE1 (OMPL's defaults, the grid over our KPIECE1's projection, from the
+//     input) or SST (our SST's radii, from the input) minimizing the duration: a weight-0
 //     subspace counts the slices from the start, a motion costs its slices times DT.
 // Input on stdin: the flat problem benchmarks/ompl_cpp_programs.py writes (family_input).
-// Usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME_LIMIT SEED [optimize]
+// Usage: family_ompl rrt|rrtconnect|prm|prmstar|rrtstar|informed|kpiece|sst TIME_LIMIT SEED
+//        [optimize]
 //   optimize: RRT*, Informed RRT* and SST keep improving until the limit.
 // Prints the path on stdout in SPEC 5.4's format (no tree), so the validator can check
 // it, and common.h's stats line (with " motion_checks=M" for a geometric problem) and,
@@ -71,6 +74,7 @@ struct Problem {
     int kmin = 1, kmax = 1;
     std::vector<double> controlLow, controlHigh;
     double selection = 0, pruning = 0;      // our SST's radii
+    std::vector<std::pair<int, std::pair<double, double>>> cells;  // KPIECE1: (index, (low, scale))
     double bx = 0, by = 0, l1 = 1, l2 = 1;  // arm2
     std::vector<Point> body;                // rigid2, the cars
     bool hasBox = false;
@@ -401,7 +405,8 @@ static bool readVariables(std::istream &in, Problem &p) {
 }
 
 // "check STEP" (geometric) or "dynamics SCHEME DT KMIN KMAX PARAM / controls M LO HI ... /
-// sst SELECTION PRUNING" (kinodynamic); then "arm ..." (arm2) or "body N X Y ...".
+// sst SELECTION PRUNING / kpiece N INDEX LOW SCALE ..." (kinodynamic); then "arm ..."
+// (arm2) or "body N X Y ...".
 static bool readSystem(std::istream &in, Problem &p) {
     std::string word;
     int count;
@@ -414,7 +419,11 @@ static bool readSystem(std::istream &in, Problem &p) {
         p.controlLow.resize(count); p.controlHigh.resize(count);
         for (int i = 0; i < count; ++i)
             if (!(in >> p.controlLow[i] >> p.controlHigh[i])) return false;
-        if (!(in >> word >> p.selection >> p.pruning)) return false;
+        if (!(in >> word >> p.selection >> p.pruning >> word >> count) || count < 1 || count > 8)
+            return false;
+        p.cells.resize(count);
+        for (auto &axis : p.cells)
+            if (!(in >> axis.first >> axis.second.first >> axis.second.second)) return false;
     }
     if (p.system == "arm2") return static_cast<bool>(in >> word >> p.bx >> p.by >> p.l1 >> p.l2);
     if (!(in >> word >> count) || (count < 3 && !(p.system == "pendulum" && count == 0)))
@@ -538,7 +547,11 @@ static void setStartAndGoal(ob::ProblemDefinition &problem, const ob::SpaceInfor
     problem.setGoal(goal);
 }
 
-// RRT, RRTConnect, RRT* or Informed RRT* on a geometric problem.
+static bool isRoadmap(const std::string &planner) {
+    return planner == "prm" || planner == "prmstar";
+}
+
+// RRT, RRTConnect, PRM, PRM*, RRT* or Informed RRT* on a geometric problem.
 static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
                                        const std::string &planner, Run &run) {
     auto info = setup.getSpaceInformation();
@@ -556,10 +569,11 @@ static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
         objective = std::make_shared<MetricLength>(info, f);
     run.setThreshold(*objective);
     setup.setOptimizationObjective(objective);
+    if (isRoadmap(planner)) return ompl_cpp::prmPlanner(info, planner == "prmstar");
     return ompl_cpp::starPlanner(info, informed, run);
 }
 
-// Control RRT or SST on a kinodynamic problem.
+// Control RRT, KPIECE1 or SST on a kinodynamic problem.
 static ob::PlannerPtr kinodynamicPlanner(oc::SimpleSetup &setup, const Family &f,
                                          const std::string &planner, Run &run) {
     auto info = setup.getSpaceInformation();
@@ -567,6 +581,18 @@ static ob::PlannerPtr kinodynamicPlanner(oc::SimpleSetup &setup, const Family &f
         auto rrt = std::make_shared<oc::RRT>(info);
         rrt->setGoalBias(0.05);
         return rrt;
+    }
+    if (planner == "kpiece") {
+        auto projection = std::make_shared<ompl_cpp::ScaledProjection>(
+            info->getStateSpace(), f.p.cells.size(), [&f](const ob::State *s, double *out) {
+                double q[8];
+                f.get(s, q);
+                for (size_t k = 0; k < f.p.cells.size(); ++k) {
+                    const auto &axis = f.p.cells[k];
+                    out[k] = (q[axis.first] - axis.second.first) * axis.second.second;
+                }
+            });
+        return ompl_cpp::kpiecePlanner(info, projection);
     }
     auto objective = std::make_shared<Duration>(info, f);
     run.setThreshold(*objective);
@@ -590,7 +616,7 @@ static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
     og::SimpleSetup setup(info);
     setStartAndGoal(*setup.getProblemDefinition(), info, f);
     setup.setPlanner(geometricPlanner(setup, f, planner, run));
-    setup.solve(run.condition());
+    setup.solve(isRoadmap(planner) ? run.timeCondition() : run.condition());
     const bool solved = setup.haveExactSolutionPath();
     const double seconds = run.seconds();
     if (solved) {
@@ -604,6 +630,7 @@ static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
     }
     ob::PlannerData data(info);
     setup.getPlannerData(data);
+    if (isRoadmap(planner)) run.polls = std::max(2u, data.numVertices()) - 2;  // as ours: added
     const auto motions = info->getMotionValidator();
     run.report(solved, seconds, data.numVertices(), " motion_checks=" + std::to_string(
         motions->getValidMotionCount() + motions->getInvalidMotionCount()));
@@ -660,8 +687,8 @@ static bool solveKinodynamic(Family &f, const std::string &planner, Run &run) {
 int main(int argc, char **argv) {
     const bool optimize = ompl_cpp::optimizeFlag(argc, argv, 4);
     if (argc != 4 && !optimize) {
-        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect|rrtstar|informed|sst TIME SEED "
-                             "[optimize]\n");
+        std::fprintf(stderr, "usage: family_ompl rrt|rrtconnect|prm|prmstar|rrtstar|informed|"
+                             "kpiece|sst TIME SEED [optimize]\n");
         return 2;
     }
     const std::string planner = argv[1];
@@ -670,13 +697,15 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "family_ompl: bad input\n");
         return 2;
     }
-    const bool geometric = planner == "rrtconnect" || planner == "rrtstar" || planner == "informed";
-    if (f.p.kinodynamic ? geometric : planner == "sst") {
+    const bool geometric = planner == "rrtconnect" || isRoadmap(planner) ||
+                           planner == "rrtstar" || planner == "informed";
+    const bool control = planner == "sst" || planner == "kpiece";
+    if (f.p.kinodynamic ? geometric : control) {
         std::fprintf(stderr, "family_ompl: %s does not plan for %s\n", planner.c_str(),
                      f.p.system.c_str());
         return 2;
     }
-    if (!geometric && planner != "rrt" && planner != "sst") {
+    if (!geometric && !control && planner != "rrt") {
         std::fprintf(stderr, "family_ompl: unknown planner %s\n", planner.c_str());
         return 2;
     }

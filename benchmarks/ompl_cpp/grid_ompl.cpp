@@ -1,16 +1,21 @@
 // OMPL with C++ callbacks on our grid problems: the practical limit for these planners
 // (issue 19). The same set-up as benchmarks/ompl_adapters.py, written in C++:
 //   point: R^2, motions checked every 0.05 map units, goal radius 0.1; geometric RRT
-//          (goal bias 0.05), RRT-Connect, RRT* or Informed RRT* (OMPL's defaults,
-//          minimizing path length: OMPL's own objective, as the Python peer);
+//          (goal bias 0.05), RRT-Connect, PRM, PRM*, RRT* or Informed RRT* (OMPL's
+//          defaults, minimizing path length: OMPL's own objective, as the Python peer;
+//          PRM and PRM* end at their first path, as ours);
 //   ship, left: R^4, one step of 20 slices per control (SPEC 2's slice; a slice that
-//          collides makes the step invalid); control RRT (goal bias 0.05) or SST
-//          (our SST's radii, 0.25 map units; cost: the length of the polyline through
-//          the positions, our cost for the ships, docs/optimal-planning.md).
+//          collides makes the step invalid); control RRT (goal bias 0.05), KPIECE1
+//          (a control held 1 to 10 steps, as ours; the grid over our projection: the
+//          position in cells of 0.5 map units on maps under 20 a side, else 1, and the
+//          velocity in cells of 0.2) or SST (our SST's radii, 0.25 map units; cost: the
+//          length of the polyline through the positions, our cost for the ships,
+//          docs/optimal-planning.md).
 // Input on stdin (benchmarks/ompl_cpp_programs.py's grid_input writes it from a .sw problem):
 //   W H / W*H characters 0 or 1, row-major from the bottom row / sx sy gx gy
 // Usage: grid_ompl MODE TIME_LIMIT SEED [optimize]
-//   MODE: point (RRT) | rrtconnect | rrtstar | informed | ship (RRT) | left (RRT) | sst | sst-left
+//   MODE: point (RRT) | rrtconnect | prm | prmstar | rrtstar | informed | ship (RRT) | left (RRT)
+//         | kpiece | kpiece-left | sst | sst-left
 //   optimize: RRT*, Informed RRT* and SST keep improving until the limit.
 // Prints the answer on stdout in SPEC 2's format (no tree) and common.h's stats line (and,
 // with optimize, its progress line) on stderr. Exit 0 solved, 2 bad usage, 3 unsolved.
@@ -25,6 +30,8 @@
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include <algorithm>
 
 #include <iostream>
 
@@ -59,10 +66,18 @@ static ob::PlannerPtr pointOptimizer(og::SimpleSetup &setup, bool informed, Run 
     return ompl_cpp::starPlanner(info, informed, run);
 }
 
+static bool isRoadmap(const std::string &mode) { return mode == "prm" || mode == "prmstar"; }
+
 static ob::PlannerPtr pointPlanner(og::SimpleSetup &setup, const std::string &mode, Run &run) {
     if (mode == "rrtstar" || mode == "informed")
         return pointOptimizer(setup, mode == "informed", run);
     auto info = setup.getSpaceInformation();
+    if (isRoadmap(mode)) {
+        auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
+        run.setThreshold(*objective);
+        setup.setOptimizationObjective(objective);
+        return ompl_cpp::prmPlanner(info, mode == "prmstar");
+    }
     if (mode == "rrtconnect") return std::make_shared<og::RRTConnect>(info);
     auto rrt = std::make_shared<og::RRT>(info);
     rrt->setGoalBias(0.05);
@@ -85,11 +100,12 @@ static bool solvePoint(const Grid &g, const std::string &mode, Run &run) {
     start[0] = g.sx; start[1] = g.sy; goal[0] = g.gx; goal[1] = g.gy;
     setup.setStartAndGoalStates(start, goal, GOAL_RADIUS);
     setup.setPlanner(pointPlanner(setup, mode, run));
-    setup.solve(run.condition());
+    setup.solve(isRoadmap(mode) ? run.timeCondition() : run.condition());
     const bool solved = setup.haveExactSolutionPath();
     const double seconds = run.seconds();
     ob::PlannerData data(info);
     setup.getPlannerData(data);
+    if (isRoadmap(mode)) run.polls = std::max(2u, data.numVertices()) - 2;  // as ours: added
     if (solved) {
         const og::PathGeometric &path = setup.getSolutionPath();
         std::printf("%zu\n", path.getStateCount());
@@ -149,12 +165,27 @@ static void propagateShip(const Grid &g, const ob::State *from, const oc::Contro
     r[0] = x; r[1] = y; r[2] = dx; r[3] = dy;
 }
 
-static ob::PlannerPtr shipPlanner(oc::SimpleSetup &setup, bool sst, Run &run) {
+// KPIECE1's grid over (x, y, dx, dy), as our ships' (GridControlOptions' cell sizes).
+static ob::ProjectionEvaluatorPtr shipProjection(const Grid &g, const ob::StateSpacePtr &space) {
+    const double cell = std::max(g.width, g.height) < 20 ? 0.5 : 1.0, velocity = 0.2;
+    return std::make_shared<ompl_cpp::ScaledProjection>(
+        space, 4, [cell, velocity](const ob::State *s, double *out) {
+            out[0] = values(s)[0] / cell; out[1] = values(s)[1] / cell;
+            out[2] = values(s)[2] / velocity; out[3] = values(s)[3] / velocity;
+        });
+}
+
+static ob::PlannerPtr shipPlanner(const Grid &g, oc::SimpleSetup &setup, const std::string &kind,
+                                  Run &run) {
     auto info = setup.getSpaceInformation();
-    if (!sst) {
+    if (kind == "rrt") {
         auto rrt = std::make_shared<oc::RRT>(info);
         rrt->setGoalBias(0.05);
         return rrt;
+    }
+    if (kind == "kpiece") {
+        info->setMinMaxControlDuration(1, 10);  // ours: a control held 1 to 10 steps
+        return ompl_cpp::kpiecePlanner(info, shipProjection(g, info->getStateSpace()));
     }
     auto objective = std::make_shared<PositionLength>(info);
     run.setThreshold(*objective);
@@ -172,7 +203,8 @@ static void printShipPath(const oc::PathControl &path) {
     std::printf("0\n");
 }
 
-static bool solveShip(const Grid &g, double thetaRange, bool sst, Run &run) {
+// kind: rrt, kpiece or sst.
+static bool solveShip(const Grid &g, double thetaRange, const std::string &kind, Run &run) {
     auto space = std::make_shared<ob::RealVectorStateSpace>(4);
     ob::RealVectorBounds bounds(4);
     bounds.setLow(0, 0.0); bounds.setHigh(0, g.width);
@@ -197,13 +229,17 @@ static bool solveShip(const Grid &g, double thetaRange, bool sst, Run &run) {
     start[0] = g.sx; start[1] = g.sy; start[2] = 0.0; start[3] = 0.0;
     setup.setStartState(start);
     setup.setGoal(std::make_shared<PositionGoal>(info, g.gx, g.gy));
-    setup.setPlanner(shipPlanner(setup, sst, run));
+    setup.setPlanner(shipPlanner(g, setup, kind, run));
     setup.solve(run.condition());
     const bool solved = setup.haveExactSolutionPath();
     const double seconds = run.seconds();
     ob::PlannerData data(info);
     setup.getPlannerData(data);
-    if (solved) printShipPath(setup.getSolutionPath());
+    if (solved) {
+        oc::PathControl &path = setup.getSolutionPath();
+        path.interpolate();  // one control a step (SPEC 2): KPIECE1 holds one for several
+        printShipPath(path);
+    }
     run.report(solved, seconds, data.numVertices(), "");
     return solved;
 }
@@ -211,8 +247,8 @@ static bool solveShip(const Grid &g, double thetaRange, bool sst, Run &run) {
 int main(int argc, char **argv) {
     const bool optimize = ompl_cpp::optimizeFlag(argc, argv, 4);
     if (argc != 4 && !optimize) {
-        std::fprintf(stderr, "usage: grid_ompl point|rrtconnect|rrtstar|informed|ship|left|sst|"
-                             "sst-left TIME SEED [optimize]\n");
+        std::fprintf(stderr, "usage: grid_ompl point|rrtconnect|prm|prmstar|rrtstar|informed|ship|"
+                             "left|kpiece|kpiece-left|sst|sst-left TIME SEED [optimize]\n");
         return 2;
     }
     const std::string mode = argv[1];
@@ -229,11 +265,16 @@ int main(int argc, char **argv) {
     run.limit = std::stod(argv[2]);
     run.optimize = optimize;
     bool solved;
-    if (mode == "point" || mode == "rrtconnect" || mode == "rrtstar" || mode == "informed")
+    static const std::vector<std::string> pointModes = {"point", "rrtconnect", "prm", "prmstar",
+                                                        "rrtstar", "informed"};
+    const bool left = mode.size() > 5 && mode.compare(mode.size() - 5, 5, "-left") == 0;
+    const std::string kind = left ? mode.substr(0, mode.size() - 5) : mode;
+    if (std::find(pointModes.begin(), pointModes.end(), mode) != pointModes.end())
         solved = solvePoint(g, mode, run);
-    else if (mode == "ship" || mode == "sst") solved = solveShip(g, 2.0 * M_PI, mode == "sst", run);
-    else if (mode == "left" || mode == "sst-left")
-        solved = solveShip(g, M_PI, mode == "sst-left", run);
+    else if (mode == "ship" || mode == "left")
+        solved = solveShip(g, mode == "left" ? M_PI : 2.0 * M_PI, "rrt", run);
+    else if (kind == "kpiece" || kind == "sst")
+        solved = solveShip(g, left ? M_PI : 2.0 * M_PI, kind, run);
     else { std::fprintf(stderr, "grid_ompl: unknown mode %s\n", mode.c_str()); return 2; }
     return solved ? 0 : 3;
 }

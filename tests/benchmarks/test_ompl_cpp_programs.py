@@ -4,6 +4,7 @@ validator's checks; benchmarks/ompl_cpp_planner.py, their peer command line."""
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 
@@ -41,16 +42,18 @@ def test_an_arm_problem_gives_its_links_and_every_obstacle_kind():
     assert lines[-1] == "goal 0.01 2 0 2.5 1 0.5"
 
 
-def test_a_kinodynamic_problem_gives_its_dynamics_controls_and_sst_radii():
+def test_a_kinodynamic_problem_gives_its_dynamics_controls_sst_radii_and_kpiece_grid():
     lines = family_input((FAMILY_DIR / "pendulum-t3.kp").read_text()).decode().splitlines()
     assert lines[5:] == ["1.0 1 0", "1.0 1 1", "dynamics rk4 0.05 1 10 9.81",
                          "controls 1 -3.0 3.0",
                          "sst 0.23141592653589793 0.11570796326794897",  # 1 % and 0.5 %
+                         f"kpiece 2 0 {-math.pi!r} {64 / (2 * math.pi)!r} 1 -10.0 3.2",
                          "body 0 ", "box 0", "obstacles 0", "start -1.5707963267948966 0.0",
                          "goal 0.1 2 0 1.5707963267948966 1 0.0"]
     car = family_input((FAMILY_DIR / "car1-scene1.kp").read_text()).decode().splitlines()
     assert car[8] == "dynamics euler 0.01 1 250 0.2"  # car1's L
-    assert car[11] == "body 4 -0.1 -0.05 0.1 -0.05 0.1 0.05 -0.1 0.05"
+    assert car[11] == "kpiece 2 0 0.0 32.0 1 0.0 32.0"  # x and y, 64 cells over 0..2
+    assert car[12] == "body 4 -0.1 -0.05 0.1 -0.05 0.1 0.05 -0.1 0.05"
 
 
 def test_the_peer_refuses_what_the_programs_do_not_plan(tmp_path):
@@ -100,6 +103,39 @@ def test_family_ompl_answers_pass_the_validator(name, planner):
         for row, after in zip(rows, rows[1:]):
             n = len(problem.start)
             assert problem.system.propagate(row[:n], (*row[n:-1], int(row[-1]))) == tuple(after[:n])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name,planner", [("arm2-pair1.kp", "prm"), ("rigid2-scene1.kp", "prmstar"),
+                                          ("car1-scene1.kp", "kpiece"),
+                                          ("pendulum-t3.kp", "kpiece")])
+def test_family_ompl_roadmaps_and_kpiece_pass_the_validator(name, planner):
+    """PRM's answer may differ run to run with one seed (OMPL checks its roadmap for a
+    path in a thread of its own, every millisecond), so only its validity is checked."""
+    text = (FAMILY_DIR / name).read_text()
+    done = subprocess.run([str(_program("family_ompl")), planner, "30", "7"],
+                          input=family_input(text), capture_output=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    stats = parse_stats(done.stderr.decode())
+    assert stats["status"] == "solved" and int(stats["iterations"]) >= 0
+    report = validate_plan(kinoplan_setup(parse_kinoplan(text)), done.stdout.decode())
+    assert report.valid, report.first_failure
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mode,vehicle,name", [("prm", Vehicle.POINT, "space-2"),
+                                               ("prmstar", Vehicle.POINT, "space-1"),
+                                               ("kpiece", Vehicle.SPACESHIP, "space-1"),
+                                               ("kpiece-left", Vehicle.LEFT_SPACESHIP,
+                                                "simple-0")])
+def test_grid_ompl_roadmaps_and_kpiece_pass_the_validator(mode, vehicle, name):
+    """KPIECE1 holds a control for 1 to 10 steps; the answer is one line a step (SPEC 2)."""
+    text = (COURSE / f"{name}.sw").read_text()
+    done = subprocess.run([str(_program("grid_ompl")), mode, "30", "5"], input=grid_input(text),
+                          capture_output=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    report = validate_output(parse_problem(text), vehicle, done.stdout.decode())
+    assert report.valid, report.first_failure
 
 
 def _program(name: str):
