@@ -162,10 +162,10 @@ def summary(rows: list[tuple[str, float]]) -> list[str]:
     return lines + (["", *HEADER, *above] if above else [])
 
 
-def page(table: list[str], meta: dict, seeds: int, limit: float) -> str:
+def page(table: list[str], meta: dict, seeds: int, limit: float, path: Path) -> str:
     from benchmarks.results_page import run_table
     lines = ["# Results: our planners against OMPL in C++", "",
-             "Written by `python -m benchmarks.bench_cpp --page docs/results/cpp.md` (the "
+             f"Written by `python -m benchmarks.bench_cpp --page {path}` (the "
              "command below); earlier runs are this page's git history. Per problem and "
              f"planner, {seeds} seeds, our compiled run and OMPL in C++'s same planner "
              "(benchmarks/ompl_cpp/) taking turns as whole processes, the order swapped "
@@ -222,7 +222,7 @@ def main(argv: list[str] | None = None) -> int:
                 else:
                     meta.pop("rows", None)
                 table = [*HEADER, *(text for text, _ in rows), "", *summary(rows)]
-                args.page.write_text(page(table, meta, args.seeds, args.time))
+                args.page.write_text(page(table, meta, args.seeds, args.time, args.page))
     print("\n".join(summary(rows)))
     return 0
 
