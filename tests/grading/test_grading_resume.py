@@ -89,3 +89,42 @@ def test_resume_after_sigkill(tmp_path):
 @pytest.mark.slow
 def test_resume_after_sigterm(tmp_path):
     _interrupt(signal.SIGTERM, tmp_path)
+
+
+# A local worker on SIGTERM (its grader died: the parent-death signal): between tasks, where
+# the pool's loop catches a SystemExit (while it sends a result back) and would wait on for
+# work, holding the grader's pipes; and after a task whose SystemExit was lost (Python ignores
+# one raised in an at-fork hook: run_planner forks). The old handler left both running.
+_WORKER = """
+import os, signal, sys, time
+sys.path.insert(0, sys.argv[1])
+from grading import grade
+signal.signal(signal.SIGTERM, grade._exit_on_signal)
+
+def signalled():
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(30)  # the handler runs here
+
+def between_tasks():
+    try:
+        signalled()
+    except BaseException:  # as the pool's loop does
+        pass
+
+def lost():
+    try:
+        signalled()
+    except SystemExit:  # as an at-fork hook's caller does
+        pass
+    return "a row"
+
+between_tasks() if sys.argv[2] == "between" else grade._in_local_worker(lost)
+print("still running")
+"""
+
+
+@pytest.mark.parametrize("where", ["between", "lost"])
+def test_a_local_worker_told_to_end_ends_at_once(where):
+    done = subprocess.run([sys.executable, "-c", _WORKER, str(ROOT), where],
+                          capture_output=True, text=True, timeout=60)
+    assert (done.returncode, done.stdout) == (128 + signal.SIGTERM, ""), done.stderr
