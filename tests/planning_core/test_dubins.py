@@ -33,7 +33,7 @@ def _gap(a, b) -> float:
 
 def test_each_word_reaches_its_end_and_its_length_is_its_curves():
     seen = set()
-    for a, b, radius in _poses(1, 20):
+    for a, b, radius in _poses(1, 10):
         for path in all_words(a, b, radius):
             seen.add(path.word)
             length, end = _integrated(path)
