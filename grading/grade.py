@@ -21,8 +21,8 @@ from grading.executors import dask_executor, each_result
 from grading.problems import read_problem
 from grading.progress import Progress
 from grading.rubric import Item
-from grading.runs import (build_one, calibrate_one, failed_build_row, lost_build_row,
-                          lost_calibration_row, lost_run_row, run_one)
+from grading.runs import (build_one, calibrate_one, failed_build_row, load_drawing,
+                          lost_build_row, lost_calibration_row, lost_run_row, run_one)
 from grading.store import Store
 from planning_core.problem_text import ProblemFormatError
 
@@ -261,6 +261,7 @@ class _LocalPool:
         self.executor = self._start()
 
     def _start(self) -> cf.ProcessPoolExecutor:
+        load_drawing()  # once here, not in each worker
         return cf.ProcessPoolExecutor(self.jobs, initializer=_worker_start,
                                       initargs=(os.getpid(),))
 
@@ -320,7 +321,20 @@ def _worker_start(parent: int) -> None:
         os._exit(1)
 
 
+_IN_TASK = False
+"""In a local worker: a task is running (from just before its function to just after)."""
+_STOP = 0
+"""In a local worker: the signal that asked it to end (0: none yet)."""
+
+
 def _exit_on_signal(signum, frame):
+    """In a task, unwind it (run_planner kills the run's processes on the way); between
+    tasks end at once: the pool's loop would catch the SystemExit (while it sends a
+    result back, say) and wait on for work that never comes, holding our pipes."""
+    global _STOP
+    _STOP = signum
+    if not _IN_TASK:
+        os._exit(128 + signum)
     signal.signal(signal.SIGALRM, signal.SIG_DFL)
     signal.alarm(5)  # the clean-up gets 5 s; then the kernel ends the worker
     raise SystemExit(128 + signum)
@@ -329,7 +343,14 @@ def _exit_on_signal(signum, frame):
 def _in_local_worker(function, *args):
     """Run a task; on SIGTERM (unwound through run_planner's clean-up) end the worker,
     which the pool would otherwise keep waiting for work that will never come."""
+    global _IN_TASK
     try:
-        return function(*args)
+        _IN_TASK = True
+        try:
+            return function(*args)
+        finally:  # a signal before the flag is down raises here: caught below
+            _IN_TASK = False
+            if _STOP:  # its SystemExit was lost: raised in an at-fork hook, which
+                os._exit(128 + _STOP)  # Python reports and ignores (fork in run_planner)
     except SystemExit as stop:
         os._exit(stop.code if isinstance(stop.code, int) else 1)
