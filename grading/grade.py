@@ -21,8 +21,8 @@ from grading.executors import dask_executor, each_result
 from grading.problems import read_problem
 from grading.progress import Progress
 from grading.rubric import Item
-from grading.runs import (build_one, calibrate_one, failed_build_row, load_drawing,
-                          lost_build_row, lost_calibration_row, lost_run_row, run_one)
+from grading.runs import (build_one, calibrate_one, failed_build_row, lost_build_row,
+                          lost_calibration_row, lost_run_row, run_one)
 from grading.store import Store
 from planning_core.problem_text import ProblemFormatError
 
@@ -261,7 +261,6 @@ class _LocalPool:
         self.executor = self._start()
 
     def _start(self) -> cf.ProcessPoolExecutor:
-        load_drawing()  # once here, not in each worker
         return cf.ProcessPoolExecutor(self.jobs, initializer=_worker_start,
                                       initargs=(os.getpid(),))
 

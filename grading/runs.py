@@ -9,7 +9,6 @@ import contextlib
 import dataclasses
 import functools
 import hashlib
-import importlib
 import os
 import shutil
 import tempfile
@@ -228,21 +227,6 @@ def _verdict(run: PlannerRun, report: ValidationReport | None) -> dict:
 PICTURES = (("pdf", "pdf", ".pdf"), ("view", "html", ".html"))
 """A failing run's pictures: its row's column, its folder in ``--out`` (then
 ``SUBMISSION/STEM``), its format (validator.render_output's extension)."""
-_DRAWING = ("validator.render_output", "validator.render_pdf", "validator.render_scene",
-            "validator.render_html")
-"""The modules validator.render_output.write_picture imports to draw PICTURES' formats."""
-
-
-def load_drawing() -> None:
-    """Import the drawing modules now, in the process that forks the local pool's
-    workers: they share them rather than each import them at its first failing run
-    (about 0.1 s of CPU per worker, reportlab's). Without reportlab the PDF's module is
-    left out; its runs get no PDF then, as before."""
-    for module in _DRAWING:
-        try:
-            importlib.import_module(module)
-        except ImportError:
-            pass
 
 
 def _draw(out: Path, submission: str, stem: str, problem: GradedProblem, mode: str,
