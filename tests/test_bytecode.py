@@ -51,12 +51,18 @@ def python_for(user: list[str]) -> str:
 MEMORY = "/dev/shm"
 
 
+def _free_bytes(folder: str) -> int:
+    status = os.statvfs(folder)
+    return status.f_bavail * status.f_frsize
+
+
 @pytest.fixture
 def scratch():
     """A fresh folder other users may enter (pytest's tmp_path is root's alone), in
     memory when the system has a memory file system for all to write: these runs
     write hundreds of small files, the forger thousands (seconds on a disk)."""
-    memory = os.path.isdir(MEMORY) and os.access(MEMORY, os.W_OK | os.X_OK)
+    memory = (os.path.isdir(MEMORY) and os.access(MEMORY, os.W_OK | os.X_OK)
+              and _free_bytes(MEMORY) > 512 << 20)  # not a container's small /dev/shm
     folder = Path(tempfile.mkdtemp(prefix="rrt-bytecode-", dir=MEMORY if memory else None))
     folder.chmod(0o755)
     yield folder
