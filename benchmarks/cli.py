@@ -51,8 +51,6 @@ from benchmarks.harness import (HarnessOptions, Interrupted, RunSpec, interrupt_
 from benchmarks.ompl_log import LogHeader, write_logs
 from benchmarks.report import markdown_report
 from benchmarks.rows import CsvAppender, read_csv, write_csv
-from benchmarks.arm2_shortest_path import arm2_shortest_lengths
-from benchmarks.shortest_path import shortest_lengths
 from cli_common import EXIT_USAGE, OneLineErrorParser, add_switches
 from planning_core.vehicles import Vehicle
 
@@ -228,6 +226,8 @@ def write_reports(rows, out: Path, meta: dict, plots: bool, yardstick: bool = Tr
     write_csv(rows, out / "runs.csv")
     shortest = None
     if yardstick and meta.get("preset", "") not in family.FAMILY_PRESETS:  # s at 100x100
+        from benchmarks.arm2_shortest_path import arm2_shortest_lengths  # numpy: only here
+        from benchmarks.shortest_path import shortest_lengths
         shortest = shortest_lengths(r.problem for r in rows if r.vehicle == "point")
         shortest.update(arm2_shortest_lengths(r.problem for r in rows if r.vehicle == "arm2"))
         (out / "shortest.csv").write_text("problem,shortest_path_length\n" + "".join(

@@ -320,7 +320,20 @@ def _worker_start(parent: int) -> None:
         os._exit(1)
 
 
+_IN_TASK = False
+"""In a local worker: a task is running (from just before its function to just after)."""
+_STOP = 0
+"""In a local worker: the signal that asked it to end (0: none yet)."""
+
+
 def _exit_on_signal(signum, frame):
+    """In a task, unwind it (run_planner kills the run's processes on the way); between
+    tasks end at once: the pool's loop would catch the SystemExit (while it sends a
+    result back, say) and wait on for work that never comes, holding our pipes."""
+    global _STOP
+    _STOP = signum
+    if not _IN_TASK:
+        os._exit(128 + signum)
     signal.signal(signal.SIGALRM, signal.SIG_DFL)
     signal.alarm(5)  # the clean-up gets 5 s; then the kernel ends the worker
     raise SystemExit(128 + signum)
@@ -329,7 +342,14 @@ def _exit_on_signal(signum, frame):
 def _in_local_worker(function, *args):
     """Run a task; on SIGTERM (unwound through run_planner's clean-up) end the worker,
     which the pool would otherwise keep waiting for work that will never come."""
+    global _IN_TASK
     try:
-        return function(*args)
+        _IN_TASK = True
+        try:
+            return function(*args)
+        finally:  # a signal before the flag is down raises here: caught below
+            _IN_TASK = False
+            if _STOP:  # its SystemExit was lost: raised in an at-fork hook, which
+                os._exit(128 + _STOP)  # Python reports and ignores (fork in run_planner)
     except SystemExit as stop:
         os._exit(stop.code if isinstance(stop.code, int) else 1)

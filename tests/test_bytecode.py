@@ -48,10 +48,22 @@ def python_for(user: list[str]) -> str:
     pytest.skip(f"no python3 that user {OTHER_USER} may run")
 
 
+MEMORY = "/dev/shm"
+
+
+def _free_bytes(folder: str) -> int:
+    status = os.statvfs(folder)
+    return status.f_bavail * status.f_frsize
+
+
 @pytest.fixture
-def shared_folder():
-    """A folder other users may enter (pytest's tmp_path is root's alone)."""
-    folder = Path(tempfile.mkdtemp(prefix="rrt-bytecode-"))
+def scratch():
+    """A fresh folder other users may enter (pytest's tmp_path is root's alone), in
+    memory when the system has a memory file system for all to write: these runs
+    write hundreds of small files, the forger thousands (seconds on a disk)."""
+    memory = (os.path.isdir(MEMORY) and os.access(MEMORY, os.W_OK | os.X_OK)
+              and _free_bytes(MEMORY) > 512 << 20)  # not a container's small /dev/shm
+    folder = Path(tempfile.mkdtemp(prefix="rrt-bytecode-", dir=MEMORY if memory else None))
     folder.chmod(0o755)
     yield folder
     subprocess.run(["chmod", "-R", "u+w", str(folder)], check=True)
@@ -66,7 +78,7 @@ def writable_by(user: list[str], folder: Path) -> Path:
 
 
 @pytest.mark.parametrize("warm", [True, False], ids=["after-a-run", "bare"])
-def test_no_bytecode_a_planner_writes_is_ever_loaded(shared_folder, warm):
+def test_no_bytecode_a_planner_writes_is_ever_loaded(scratch, warm):
     """A planner run by the validator forges bytecode for every module, in every
     place it can write (its user's caches, /tmp, __pycache__, .build/pycache, the
     user site); the checkout is read-only to it. The next validator run still
@@ -74,17 +86,17 @@ def test_no_bytecode_a_planner_writes_is_ever_loaded(shared_folder, warm):
     before."""
     user = as_other_user()
     python = python_for(user)
-    copy = checkout_copy(shared_folder)
-    forger = shutil.copy(FORGER, shared_folder / FORGER.name)
-    env = {"PATH": python_on_path(shared_folder, python)}
+    copy = checkout_copy(scratch)
+    forger = shutil.copy(FORGER, scratch / FORGER.name)
+    env = {"PATH": python_on_path(scratch, python)}
     answer = launch(["./run.sh", "-seed", "1"], copy, env)  # writes .build/pycache
     assert answer.returncode == 0, answer.stderr
     if not warm:
         shutil.rmtree(copy / ".build", ignore_errors=True)
     subprocess.run(["chmod", "-R", "a-w", str(copy)], check=True)
-    home = writable_by(user, shared_folder / "home")
-    env.update(HOME=str(home), XDG_CACHE_HOME=str(writable_by(user, shared_folder / "xdg")),
-               TMPDIR=str(writable_by(user, shared_folder / "tmp")))
+    home = writable_by(user, scratch / "home")
+    env.update(HOME=str(home), XDG_CACHE_HOME=str(writable_by(user, scratch / "xdg")),
+               TMPDIR=str(writable_by(user, scratch / "tmp")))
 
     def run(*command: str) -> subprocess.CompletedProcess:
         return launch([*user, *command], copy, env)
@@ -115,11 +127,11 @@ def whole_pycs(folder: Path) -> list[Path]:
     return pycs
 
 
-def test_a_run_on_a_full_disk_leaves_no_lasting_damage(tmp_path):
+def test_a_run_on_a_full_disk_leaves_no_lasting_damage(scratch):
     """The first runs write bytecode on a full disk: they work, leave no short file,
     and the next runs work and write it whole."""
-    copy = checkout_copy(tmp_path)
-    env = {"PATH": python_on_path(tmp_path), "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    copy = checkout_copy(scratch)
+    env = {"PATH": python_on_path(scratch), "XDG_CACHE_HOME": str(scratch / "cache")}
     planner, validator = ["./run.sh", "-seed", "1"], ["./rrt-validator", "-noviz", "--",
                                                        "./run.sh", "-seed", "1"]
     for command in (planner, validator):
@@ -128,31 +140,31 @@ def test_a_run_on_a_full_disk_leaves_no_lasting_damage(tmp_path):
                                   cwd=copy, env=dict(os.environ, **env), timeout=120,
                                   preexec_fn=full_disk)
         assert done.returncode == 0, done.stderr
-    whole_pycs(tmp_path)  # none cut short (the first write that failed was the last)
+    whole_pycs(scratch)  # none cut short (the first write that failed was the last)
     answer = launch(planner, copy, env)
     assert answer.returncode == 0 and answer.stdout.startswith("3\n"), answer.stderr
     verdict = launch(validator, copy, env)
     assert (verdict.returncode, verdict.stdout) == (0, "Solution trajectory appears valid.\n")
-    assert len(whole_pycs(tmp_path)) > 20  # the checkout's modules the two import
-    assert not list(tmp_path.rglob("*.tmp"))
+    assert len(whole_pycs(scratch)) > 20  # the checkout's modules the two import
+    assert not list(scratch.rglob("*.tmp"))
 
 
 FAKE_CLI = 'def entry_point():\n    print("AAA")\n'
 
 
-def fake_planner(tmp_path: Path) -> tuple[Path, dict]:
+def fake_planner(scratch: Path) -> tuple[Path, dict]:
     """A checkout whose planner prints what its rrt_cli/cli.py says, and the env."""
-    copy = checkout_copy(tmp_path, packages=())
+    copy = checkout_copy(scratch, packages=())
     (copy / "rrt_cli").mkdir()
     (copy / "rrt_cli" / "__init__.py").write_text("")
     (copy / "rrt_cli" / "cli.py").write_text(FAKE_CLI)
-    return copy, {"PATH": python_on_path(tmp_path), "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    return copy, {"PATH": python_on_path(scratch), "XDG_CACHE_HOME": str(scratch / "cache")}
 
 
-def test_an_edit_that_keeps_size_and_time_is_run(tmp_path):
+def test_an_edit_that_keeps_size_and_time_is_run(scratch):
     """As ``cp -p`` or ``tar x`` of an edited copy leaves it: the bytecode is keyed by
     the source's content, so the edit runs."""
-    copy, env = fake_planner(tmp_path)
+    copy, env = fake_planner(scratch)
     assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
     cli = copy / "rrt_cli" / "cli.py"
     status = cli.stat()
@@ -165,8 +177,8 @@ def test_an_edit_that_keeps_size_and_time_is_run(tmp_path):
                                     lambda data: data[:16] + bytes(len(data) - 16)],
                          ids=["cut-short", "zeroed"])
 @pytest.mark.parametrize("module", ["cli", "bytecode"])  # bytecode: read by CPython's loader
-def test_a_damaged_pyc_in_the_checkout_is_ignored_and_written_again(tmp_path, damage, module):
-    copy, env = fake_planner(tmp_path)
+def test_a_damaged_pyc_in_the_checkout_is_ignored_and_written_again(scratch, damage, module):
+    copy, env = fake_planner(scratch)
     assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
     [pyc] = (copy / ".build" / "pycache").rglob(f"{module}.cpython-*.pyc")
     whole = pyc.read_bytes()
@@ -190,11 +202,11 @@ except ImportError:
 """
 
 
-def test_outside_the_checkout_a_damaged_pyc_and_a_bare_pyc_are_never_loaded(tmp_path):
+def test_outside_the_checkout_a_damaged_pyc_and_a_bare_pyc_are_never_loaded(scratch):
     """A folder outside the checkout (as the interpreter's own): its ``__pycache__`` is
     read when whole and of the source, a cut one ignored; a ``.pyc`` without its
     source is never imported."""
-    library = tmp_path / "library"
+    library = scratch / "library"
     library.mkdir()
     (library / "plain.py").write_text("VALUE = 'source'\n")
     beside = {k: v for k, v in os.environ.items() if k != "PYTHONPYCACHEPREFIX"}  # ./test.sh's
@@ -204,10 +216,10 @@ def test_outside_the_checkout_a_damaged_pyc_and_a_bare_pyc_are_never_loaded(tmp_
     own.write_bytes(own.read_bytes()[:-10])
     (library / "sourceless.pyc").write_bytes(own.read_bytes())
     done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", LOADER_PROBE, str(ROOT),
-                           str(tmp_path / "pycache"), str(library)],
+                           str(scratch / "pycache"), str(library)],
                           capture_output=True, text=True, timeout=60)
     assert (done.returncode, done.stdout, done.stderr) == (0, "source\nno sourceless\n", "")
-    assert [marshal.loads(pyc.read_bytes()[16:]) for pyc in (tmp_path / "pycache").rglob(
+    assert [marshal.loads(pyc.read_bytes()[16:]) for pyc in (scratch / "pycache").rglob(
         "plain.*.pyc")]  # compiled, and written whole under the prefix
 
 
@@ -224,10 +236,10 @@ atexit.register(lambda: sys.stderr.write("compiled: %s\\n" % ",".join(compiled))
 @pytest.mark.parametrize("launcher, args, status", [
     ("run.sh", ["-seed", "1"], 0), ("rrt-validator", ["-noviz", "--", "sh", "-c", "echo 0"], 1)])
 @pytest.mark.parametrize("interpreted", ["", "1"])
-def test_a_second_run_compiles_nothing(tmp_path, launcher, args, status, interpreted):
+def test_a_second_run_compiles_nothing(scratch, launcher, args, status, interpreted):
     """Every module a launcher imports, those CPython loads before the checked loader
     included, has its bytecode after one run: the next compiles no source."""
-    copy = checkout_copy(tmp_path)
+    copy = checkout_copy(scratch)
     code = (ROOT / launcher).read_text().split("-c '", 1)[1].split("\n' ", 1)[0]
     env = dict(os.environ, RRT_INTERPRETED=interpreted)
     for run in ("first", "second"):
@@ -239,10 +251,10 @@ def test_a_second_run_compiles_nothing(tmp_path, launcher, args, status, interpr
     assert done.stderr.splitlines()[-1] == "compiled: "
 
 
-def test_make_sh_builds_the_bytecode_afresh_and_whole(tmp_path):
+def test_make_sh_builds_the_bytecode_afresh_and_whole(scratch):
     """./make.sh's step reads nothing already in .build/pycache and replaces the
     folder whole, stray files gone."""
-    copy, env = fake_planner(tmp_path)
+    copy, env = fake_planner(scratch)
     assert launch(["./run.sh"], copy, env).stdout == "AAA\n"
     pycache = copy / ".build" / "pycache"
     [pyc] = pycache.rglob("bytecode.cpython-*.pyc")

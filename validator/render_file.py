@@ -12,6 +12,9 @@ import tempfile
 from typing import BinaryIO, Callable, TypeVar
 
 T = TypeVar("T")
+MEMORY_FOLDERS = ("/dev/shm/",)
+"""Folders under /dev that hold ordinary files (a memory file system): written
+atomically, as any other folder."""
 
 
 def write_atomically(path: str, write: Callable[[BinaryIO], T]) -> T:
@@ -42,7 +45,8 @@ def _temporary_beside(path: str) -> tuple[int, str, str] | None:
     """(fd, name) of a new temporary file in the folder of ``path``'s target (through
     symlinks, as ``open`` writes) and that target; None when ``path`` is not a
     regular file (nor absent) or no file can be made there."""
-    if os.path.abspath(path).startswith(("/dev/", "/proc/")):
+    where = os.path.abspath(path)
+    if where.startswith(("/dev/", "/proc/")) and not where.startswith(MEMORY_FOLDERS):
         return None
     try:
         if not stat.S_ISREG(os.stat(path).st_mode):

@@ -7,6 +7,8 @@ Each iteration draws a target (the goal with probability ``goal_bias``, else
 random velocity), and selects the *best near* node: of the active nodes within
 ``selection_radius`` of the target by ``si.state_distance``, the cheapest (the path's
 cost from the start, ``si.motion_cost`` summed); none there, the nearest active node.
+After the first solution the target stays a point and nearness is ``si.distance``
+(``SSTParams.refine_by_distance``; the ships: the position, the family: the same metric).
 From it, a random control held for a random duration (``si.random_motion``: Monte Carlo
 propagation, no steering). A new state joins the tree only if it is the cheapest so far
 in its *witness*'s region: the witnesses are states at least ``pruning_radius`` apart,
@@ -63,6 +65,10 @@ class SSTParams:
     """Until the first solution, the share of targets drawn from the tree's frontier
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT*'s); after it none (the paper's draws). 0: OMPL's draws throughout."""
+    refine_by_distance: bool = True
+    """After the first solution, select by ``si.distance`` (the ships: the position; the
+    cost is the path's length, so the cheapest node near a place is the one to extend)
+    rather than the whole state. False: the paper's whole-state selection throughout."""
 
     def __post_init__(self) -> None:
         for name in ("goal_bias", "frontier_targets"):
@@ -84,6 +90,7 @@ class _Search:
     def __init__(self, si: ControlSpaceInformation, pdef: ProblemDefinition,
                  rng: random.Random, params: SSTParams):
         self.si, self.rng, self.goal, self.goal_bias = si, rng, pdef.goal, params.goal_bias
+        self.refine_by_distance = params.refine_by_distance
         self.selection_radius = (si.selection_radius if params.selection_radius is None
                                  else params.selection_radius)
         self.pruning_radius = (si.pruning_radius if params.pruning_radius is None
@@ -99,6 +106,8 @@ class _Search:
         self.pinned = [False]
         """On the best solution's path: never pruned."""
         self.nodes: NearestIndex = si.new_state_nearest()
+        """The active nodes, by ``si.state_distance`` (after the first solution, with
+        ``refine_by_distance``, by ``si.distance``)."""
         self.nodes.add(start)
         self.witnesses: NearestIndex = si.new_state_nearest()
         self.witnesses.add(start)
@@ -155,8 +164,12 @@ class _Search:
         return None
 
     def target(self) -> Any:
-        """:meth:`point_target` as a whole state (``si.state_target``)."""
-        return self.si.state_target(self.point_target(), self.rng)
+        """:meth:`point_target` as a whole state (``si.state_target``) while the nodes
+        are indexed by whole state."""
+        point = self.point_target()
+        if self.best is not None and self.refine_by_distance:
+            return point
+        return self.si.state_target(point, self.rng)
 
     def point_target(self) -> Any:
         """The goal (``goal_bias``); until the first solution, else mostly a frontier
@@ -202,11 +215,22 @@ class _Search:
         """``goal_node`` is the new answer: its path is pinned, the old one's not."""
         old = self.best
         self.best = goal_node
+        if old is None and self.refine_by_distance:
+            self.nodes = self.active_nodes(self.si.new_nearest())
         if old is not None:
             self.pin(old, False)
         self.pin(goal_node, True)
         if old is not None:
             self.prune(old)
+
+    def active_nodes(self, index: NearestIndex) -> NearestIndex:
+        """``index`` (empty) holding the active nodes under the tree's numbers."""
+        for state in self.tree.states:
+            index.add(state)
+        for node, is_active in enumerate(self.active):
+            if not is_active:
+                index.remove(node)
+        return index
 
     def pin(self, node: int, pinned: bool) -> None:
         for k in self.tree.path_to(node):

@@ -85,8 +85,8 @@ def test_exit_statuses_and_limits_are_classified():
 
 def test_a_run_past_its_limit_is_killed():
     sleeper = script_planner("import time; time.sleep(30)")
-    row = run_one(RunSpec(sleeper, Vehicle.POINT, SIMPLE, 1, 0.2),
-                  HarnessOptions(grace=0.3))
+    row = run_one(RunSpec(sleeper, Vehicle.POINT, SIMPLE, 1, 0.1),
+                  HarnessOptions(grace=0.1))
     assert row.status == "killed" and not row.solved
     assert row.exit_status < 0  # by a signal
     assert row.process_seconds < 5

@@ -148,7 +148,7 @@ def test_an_unreachable_scheduler_is_one_line_and_exit_2(tmp_path, capsys):
     dask = pytest.importorskip("dask")
     pytest.importorskip("distributed")
     capsys.readouterr()
-    with dask.config.set({"distributed.comm.timeouts.connect": "0.3s"}), \
+    with dask.config.set({"distributed.comm.timeouts.connect": "0.1s"}), \
             pytest.raises(SystemExit) as stop:
         bench(tmp_path, "--scheduler", "tcp://127.0.0.1:9")
     err = capsys.readouterr().err

@@ -21,7 +21,7 @@ PROBLEMS = ["simple-0.sw", "pendulum-t3.kp"]
 ITEMS = [("simple-0.sw", mode) for mode in MODES] + [("pendulum-t3.kp", "kinoplan")]
 EXPECTED = {  # submission -> (verdict, failed check) in every mode
     "good": ("valid", None), "garbage": ("invalid", "parse"),
-    "hang": ("planner failed", "planner"), "crash": ("invalid", "parse"),
+    "asleep": ("planner failed", "planner"), "crash": ("invalid", "parse"),
     "flood": ("invalid", "parse"), "nobuild": ("build failed", "build"),
     "forks": ("valid", None), "escape": ("valid", None), "copy-a": ("valid", None),
     "copy-b": ("valid", None), "other": ("valid", None),
@@ -34,8 +34,9 @@ def graded(tmp_path_factory):
     submissions, problems, outside = make_class(base, list(CLASS), PROBLEMS)
     out = base / "out"
     status = main(["--submissions", str(submissions), "--problems", str(problems),
-                   "--out", str(out), "--modes", ",".join(MODES), "--jobs", "4",
-                   "--timeout", "3"])  # a valid run takes 0.5 s at load 4 (4 jobs here)
+                   "--out", str(out), "--modes", ",".join(MODES), "--jobs", "6",
+                   "--timeout", "3"])  # a valid run takes 0.5 s at load 4; asleep's 3 runs
+    # hold 3 of the 6 workers for the whole timeout while the other 3 grade the rest
     db = sqlite3.connect(out / "grades.sqlite")
     db.row_factory = sqlite3.Row
     rows = [dict(row) for row in db.execute("SELECT * FROM runs")]
@@ -63,7 +64,7 @@ def test_the_rows_say_what_happened(graded):
     good = by["good", "grad"]
     assert good["valid"] == 1 and good["path_length"] > 0 and good["tree_size"] > 0
     assert good["exit_status"] == 0 and good["output_bytes"] > 0
-    assert by["hang", "point"]["timed_out"] == 1
+    assert by["asleep", "point"]["timed_out"] == 1
     assert by["crash", "point"]["signal"] == 11
     flood = by["flood", "point"]
     assert flood["output_bytes"] == 64 << 20 or flood["timed_out"]
@@ -103,7 +104,7 @@ def test_nothing_the_submissions_started_is_left_running(graded):
     for name in filter(str.isdigit, os.listdir("/proc")):
         try:
             with open(f"/proc/{name}/cmdline", "rb") as cmdline:
-                if cmdline.read() in sleeps:  # forks', hang's (timed out)
+                if cmdline.read() in sleeps:  # forks', asleep's (timed out)
                     left.append(int(name))
         except OSError:
             pass
@@ -143,7 +144,7 @@ def test_report_md_summarizes_the_class(graded):
     assert "| simple-0.sw | 6/11 (55%) | 6/11 (55%) | - |" in rates
     assert "| pendulum-t3.kp | - | - | 6/11 (55%) |" in rates
     slowest = _section(report, "### Slowest runs").splitlines()
-    assert all(line.startswith("| hang | ") and line.endswith("| timed out |")
+    assert all(line.startswith("| asleep | ") and line.endswith("| timed out |")
                for line in slowest[4:7])
     assert re.search(r"\| \d+\.\d\d s \| x\d+\.\d\d \| timed out \|$", slowest[4])
     failing = _section(report, "### Failing runs")

@@ -106,20 +106,23 @@ def test_progress_lines_with_stdout_and_stderr_redirected_to_files(tmp_path):
         "submission", "valid", "runs", "valid_point", "valid_grad", "score"]
 
 
-@pytest.mark.parametrize("site", [False, pytest.param(True, marks=pytest.mark.slow)])
-def test_on_a_terminal_a_bar(tmp_path, site):
-    """``site``: the interpreter's site-packages (tqdm's bar); without: the plain line."""
-    if site:
-        pytest.importorskip("tqdm")
+# The code each grading on a terminal runs: the grading, then which optional modules it loaded.
+_GRADE = ("import sys; sys.path.insert(0, sys.argv[1]); from grading.cli import main\n"
+          "status = main(sys.argv[2:])\n"
+          "loaded = sorted(m for m in ('distributed', 'dask', 'tqdm', 'reportlab', 'numpy') "
+          "if m in sys.modules)\nprint('loaded:', loaded, file=sys.stderr)\nsys.exit(status)")
+
+
+def _graded_on_a_terminal(tmp_path: Path, flags: list[str]) -> tuple[int, str]:
+    """``_class`` graded by ``python FLAGS -I -B`` with stderr on a terminal (a pty of 100
+    columns): the exit status and what the terminal was sent."""
     argv = _class(tmp_path) + ["--timeout", "1", "--modes", "point"]
     primary, secondary = pty.openpty()
     fcntl.ioctl(secondary, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
-    flags = [] if site else ["-S"]
     with open(tmp_path / "stdout", "wb") as out:
-        grading = subprocess.Popen(
-            [sys.executable, *flags, "-I", "-B", "-c", "import sys; sys.path.insert(0, sys.argv[1]); "
-             "from grading.cli import main; sys.exit(main(sys.argv[2:]))", str(ROOT), *argv],
-            stdout=out, stderr=secondary, stdin=subprocess.DEVNULL)
+        grading = subprocess.Popen([sys.executable, *flags, "-I", "-B", "-c", _GRADE,
+                                    str(ROOT), *argv],
+                                   stdout=out, stderr=secondary, stdin=subprocess.DEVNULL)
     os.close(secondary)
     shown = b""
     while True:
@@ -130,26 +133,40 @@ def test_on_a_terminal_a_bar(tmp_path, site):
         if not chunk:
             break
         shown += chunk
-    assert grading.wait(timeout=120) == 0
+    status = grading.wait(timeout=120)
     os.close(primary)
-    text = shown.decode(errors="replace")
+    return status, shown.decode(errors="replace")
+
+
+@pytest.fixture(scope="module")
+def bare(tmp_path_factory) -> tuple[int, str, Path]:
+    """The class graded on a bare python3 (-S: no site-packages, so no Dask, tqdm or
+    reportlab) on a terminal: the exit status, the terminal's text, the --out folder.
+    Both tests below read it: the plain bar, and the local pool without site-packages."""
+    tmp_path = tmp_path_factory.mktemp("bare")
+    return (*_graded_on_a_terminal(tmp_path, ["-S"]), tmp_path / "out")
+
+
+@pytest.mark.parametrize("site", [False, pytest.param(True, marks=pytest.mark.slow)])
+def test_on_a_terminal_a_bar(request, tmp_path, site):
+    """``site``: the interpreter's site-packages (tqdm's bar); without: the plain line."""
+    if site:
+        pytest.importorskip("tqdm")
+        status, text = _graded_on_a_terminal(tmp_path, [])
+    else:
+        status, text, _ = request.getfixturevalue("bare")
+    assert status == 0
     assert "\r" in text and "rrt-grade" in text and "runs" in text
     assert ("it/s" in text or "task/s" in text or "s/task" in text) if site else \
         "\r\x1b[2Krrt-grade: runs 3/3 done, 1 valid, " in text
 
 
-def test_the_local_pool_runs_on_a_bare_python3(tmp_path):
+def test_the_local_pool_runs_on_a_bare_python3(bare):
     """No site-packages (-S): no Dask, tqdm or reportlab; the grading is whole, the failing
     runs have no PDF."""
-    argv = _class(tmp_path) + ["--timeout", "1", "--modes", "point"]
-    code = ("import sys; sys.path.insert(0, sys.argv[1]); from grading.cli import main\n"
-            "status = main(sys.argv[2:])\n"
-            "loaded = sorted(m for m in ('distributed', 'dask', 'tqdm', 'reportlab', 'numpy') "
-            "if m in sys.modules)\nprint('loaded:', loaded, file=sys.stderr)\nsys.exit(status)")
-    done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", code, str(ROOT), *argv],
-                          capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr
-    assert done.stderr.splitlines()[-1] == "loaded: []"
-    book = (tmp_path / "out" / "gradebook.csv").read_text().splitlines()
+    status, text, out = bare
+    assert status == 0, text
+    assert text.splitlines()[-1] == "loaded: []"
+    book = (out / "gradebook.csv").read_text().splitlines()
     assert book[1:] == ["garbage,0,1,0,0.0", "good,1,1,1,100.0", "hang,0,1,0,0.0"]
-    assert not (tmp_path / "out" / "pdf" / "garbage" / "simple-0-point.pdf").exists()
+    assert not (out / "pdf" / "garbage" / "simple-0-point.pdf").exists()

@@ -12,9 +12,11 @@ import errno
 import io
 import math
 import os
+import shutil
 import stat
 import subprocess
 import sys
+import tempfile
 import threading
 from pathlib import Path
 
@@ -170,9 +172,20 @@ except OSError as error:
 """
 
 
-def test_a_render_that_fails_leaves_no_file_and_an_old_file_intact(tmp_path):
+@pytest.fixture
+def in_memory():
+    """A fresh folder in /dev/shm (ordinary files in memory, under /dev), or a skip."""
+    if not os.access("/dev/shm", os.W_OK | os.X_OK):
+        pytest.skip("no writable /dev/shm")
+    folder = Path(tempfile.mkdtemp(dir="/dev/shm"))
+    yield folder
+    shutil.rmtree(folder)
+
+
+@pytest.mark.parametrize("where", ["tmp_path", "in_memory"])
+def test_a_render_that_fails_leaves_no_file_and_an_old_file_intact(where, request):
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    folder = tmp_path / "out"
+    folder = request.getfixturevalue(where) / "out"
     folder.mkdir()
     target = folder / "viz.pdf"
 

