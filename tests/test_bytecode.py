@@ -37,15 +37,30 @@ def as_other_user() -> list[str]:
 
 
 def python_for(user: list[str]) -> str:
-    """A python3 (3.10 or newer) that ``user`` may run."""
+    """A python3 (3.10 or newer) that ``user`` may run and whose standard library it
+    may not write: the forger writes bytecode for every module it can, and what it left
+    there would outlast the test in every program that Python runs."""
     for python in PYTHONS:
         real = os.path.realpath(python)
         done = subprocess.run([*user, "sh", "-c", '[ -x "$0" ] && "$0" -c "import sys; '
                                'sys.exit(sys.version_info < (3, 10))"', real],
                               capture_output=True, timeout=60)
-        if done.returncode == 0:
+        if done.returncode == 0 and not _stdlib_writable_by(user, real):
             return real
-    pytest.skip(f"no python3 that user {OTHER_USER} may run")
+    pytest.skip(f"no python3 that {f'user {OTHER_USER}' if user else 'you'} may run but "
+                "not write into (the forger would leave its bytecode in its standard "
+                "library): as root the forger runs as nobody")
+
+
+def _stdlib_writable_by(user: list[str], python: str) -> bool:
+    """Whether ``user`` may write ``python``'s standard library or its bytecode folder
+    (True when that cannot be told)."""
+    stdlib = subprocess.run([python, "-c", "import sysconfig; print(sysconfig.get_paths()"
+                             "['stdlib'])"], capture_output=True, text=True,
+                            timeout=60).stdout.strip()
+    return not stdlib or any(
+        subprocess.run([*user, "test", "-w", folder], timeout=60).returncode == 0
+        for folder in (stdlib, os.path.join(stdlib, "__pycache__")))
 
 
 MEMORY = "/dev/shm"
