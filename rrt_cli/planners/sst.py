@@ -91,6 +91,9 @@ class _Search:
                  rng: random.Random, params: SSTParams):
         self.si, self.rng, self.goal, self.goal_bias = si, rng, pdef.goal, params.goal_bias
         self.refine_by_distance = params.refine_by_distance
+        self.by_distance = False
+        """:attr:`nodes` is ordered by ``si.distance`` (from the first iteration after
+        the first solution, with ``refine_by_distance``)."""
         self.selection_radius = (si.selection_radius if params.selection_radius is None
                                  else params.selection_radius)
         self.pruning_radius = (si.pruning_radius if params.pruning_radius is None
@@ -106,8 +109,8 @@ class _Search:
         self.pinned = [False]
         """On the best solution's path: never pruned."""
         self.nodes: NearestIndex = si.new_state_nearest()
-        """The active nodes, by ``si.state_distance`` (after the first solution, with
-        ``refine_by_distance``, by ``si.distance``)."""
+        """The active nodes, by ``si.state_distance`` (or ``si.distance``:
+        :attr:`by_distance`)."""
         self.nodes.add(start)
         self.witnesses: NearestIndex = si.new_state_nearest()
         self.witnesses.add(start)
@@ -164,12 +167,17 @@ class _Search:
         return None
 
     def target(self) -> Any:
-        """:meth:`point_target` as a whole state (``si.state_target``) while the nodes
-        are indexed by whole state."""
+        """:meth:`point_target` as a whole state (``si.state_target``); after the first
+        solution, with ``refine_by_distance``, the point itself, the nodes re-indexed by
+        ``si.distance`` once (here, not at the solution: a run that stops there pays
+        nothing)."""
         point = self.point_target()
-        if self.best is not None and self.refine_by_distance:
-            return point
-        return self.si.state_target(point, self.rng)
+        if self.best is None or not self.refine_by_distance:
+            return self.si.state_target(point, self.rng)
+        if not self.by_distance:
+            self.nodes = self.active_nodes(self.si.new_nearest())
+            self.by_distance = True
+        return point
 
     def point_target(self) -> Any:
         """The goal (``goal_bias``); until the first solution, else mostly a frontier
@@ -215,8 +223,6 @@ class _Search:
         """``goal_node`` is the new answer: its path is pinned, the old one's not."""
         old = self.best
         self.best = goal_node
-        if old is None and self.refine_by_distance:
-            self.nodes = self.active_nodes(self.si.new_nearest())
         if old is not None:
             self.pin(old, False)
         self.pin(goal_node, True)
