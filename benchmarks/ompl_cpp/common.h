@@ -15,6 +15,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,11 @@
 #include <vector>
 
 namespace ompl_cpp {
+
+// PRM or PRM* by our planner name (or grid_ompl's mode).
+inline bool isRoadmap(const std::string &planner) {
+    return planner == "prm" || planner == "prmstar";
+}
 
 struct Run {
     std::chrono::steady_clock::time_point began = std::chrono::steady_clock::now();
@@ -54,10 +60,19 @@ struct Run {
     }
 
     // The limit alone, polls not counted: for PRM, whose solution-checking thread polls
-    // the condition beside its roadmap's (report() then takes the vertices added).
+    // the condition beside its roadmap's (roadmapVertices() then counts the iterations).
     ompl::base::PlannerTerminationCondition timeCondition() const {
         return ompl::base::PlannerTerminationCondition([this] { return seconds() >= limit; });
     }
+
+    // The condition to solve the planner with: a roadmap's is the limit alone.
+    ompl::base::PlannerTerminationCondition conditionFor(const std::string &planner) {
+        return isRoadmap(planner) ? timeCondition() : condition();
+    }
+
+    // A roadmap's iterations, as ours count them: the vertices it added (start and goal
+    // were given).
+    void roadmapVertices(unsigned vertices) { polls = std::max(2u, vertices) - 2; }
 
     // -optimize: a threshold of 0 is never met, so the planner runs to the limit;
     // otherwise any solution meets an infinite one and the planner stops there.

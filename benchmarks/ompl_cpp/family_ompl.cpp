@@ -547,10 +547,6 @@ static void setStartAndGoal(ob::ProblemDefinition &problem, const ob::SpaceInfor
     problem.setGoal(goal);
 }
 
-static bool isRoadmap(const std::string &planner) {
-    return planner == "prm" || planner == "prmstar";
-}
-
 // RRT, RRTConnect, PRM, PRM*, RRT* or Informed RRT* on a geometric problem.
 static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
                                        const std::string &planner, Run &run) {
@@ -569,7 +565,7 @@ static ob::PlannerPtr geometricPlanner(og::SimpleSetup &setup, const Family &f,
         objective = std::make_shared<MetricLength>(info, f);
     run.setThreshold(*objective);
     setup.setOptimizationObjective(objective);
-    if (isRoadmap(planner)) return ompl_cpp::prmPlanner(info, planner == "prmstar");
+    if (ompl_cpp::isRoadmap(planner)) return ompl_cpp::prmPlanner(info, planner == "prmstar");
     return ompl_cpp::starPlanner(info, informed, run);
 }
 
@@ -616,7 +612,7 @@ static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
     og::SimpleSetup setup(info);
     setStartAndGoal(*setup.getProblemDefinition(), info, f);
     setup.setPlanner(geometricPlanner(setup, f, planner, run));
-    setup.solve(isRoadmap(planner) ? run.timeCondition() : run.condition());
+    setup.solve(run.conditionFor(planner));
     const bool solved = setup.haveExactSolutionPath();
     const double seconds = run.seconds();
     if (solved) {
@@ -630,7 +626,7 @@ static bool solveGeometric(Family &f, const std::string &planner, Run &run) {
     }
     ob::PlannerData data(info);
     setup.getPlannerData(data);
-    if (isRoadmap(planner)) run.polls = std::max(2u, data.numVertices()) - 2;  // as ours: added
+    if (ompl_cpp::isRoadmap(planner)) run.roadmapVertices(data.numVertices());
     const auto motions = info->getMotionValidator();
     run.report(solved, seconds, data.numVertices(), " motion_checks=" + std::to_string(
         motions->getValidMotionCount() + motions->getInvalidMotionCount()));
@@ -697,7 +693,7 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "family_ompl: bad input\n");
         return 2;
     }
-    const bool geometric = planner == "rrtconnect" || isRoadmap(planner) ||
+    const bool geometric = planner == "rrtconnect" || ompl_cpp::isRoadmap(planner) ||
                            planner == "rrtstar" || planner == "informed";
     const bool control = planner == "sst" || planner == "kpiece";
     if (f.p.kinodynamic ? geometric : control) {

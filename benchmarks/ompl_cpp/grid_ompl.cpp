@@ -66,13 +66,11 @@ static ob::PlannerPtr pointOptimizer(og::SimpleSetup &setup, bool informed, Run 
     return ompl_cpp::starPlanner(info, informed, run);
 }
 
-static bool isRoadmap(const std::string &mode) { return mode == "prm" || mode == "prmstar"; }
-
 static ob::PlannerPtr pointPlanner(og::SimpleSetup &setup, const std::string &mode, Run &run) {
     if (mode == "rrtstar" || mode == "informed")
         return pointOptimizer(setup, mode == "informed", run);
     auto info = setup.getSpaceInformation();
-    if (isRoadmap(mode)) {
+    if (ompl_cpp::isRoadmap(mode)) {
         auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(info);
         run.setThreshold(*objective);
         setup.setOptimizationObjective(objective);
@@ -100,12 +98,12 @@ static bool solvePoint(const Grid &g, const std::string &mode, Run &run) {
     start[0] = g.sx; start[1] = g.sy; goal[0] = g.gx; goal[1] = g.gy;
     setup.setStartAndGoalStates(start, goal, GOAL_RADIUS);
     setup.setPlanner(pointPlanner(setup, mode, run));
-    setup.solve(isRoadmap(mode) ? run.timeCondition() : run.condition());
+    setup.solve(run.conditionFor(mode));
     const bool solved = setup.haveExactSolutionPath();
     const double seconds = run.seconds();
     ob::PlannerData data(info);
     setup.getPlannerData(data);
-    if (isRoadmap(mode)) run.polls = std::max(2u, data.numVertices()) - 2;  // as ours: added
+    if (ompl_cpp::isRoadmap(mode)) run.roadmapVertices(data.numVertices());
     if (solved) {
         const og::PathGeometric &path = setup.getSolutionPath();
         std::printf("%zu\n", path.getStateCount());
