@@ -8,9 +8,11 @@ fastest OMPL can be run): built on first use into ``.build/`` with g++ and Debia
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -32,12 +34,20 @@ def binary(name: str) -> Path | None:
     if flags.returncode != 0 or shutil.which("g++") is None:
         return None
     BUILD.mkdir(exist_ok=True)
+    # Built under a name of its own and renamed whole: a process building it beside us
+    # (two test workers) never runs a half-written program.
+    handle, partial_name = tempfile.mkstemp(prefix=f".{name}.", suffix=".partial", dir=BUILD)
+    os.close(handle)
+    partial = Path(partial_name)
     built = subprocess.run(["g++", *FLAGS, *flags.stdout.split(), str(source), "-o",
-                            str(target), "-lompl", "-lpthread"], capture_output=True, text=True)
+                            str(partial), "-lompl", "-lpthread"], capture_output=True, text=True)
     if built.returncode != 0:
+        partial.unlink(missing_ok=True)
         print(f"ompl_cpp_programs: {name} not built: {built.stderr.strip()[-300:]}",
               file=sys.stderr)
         return None
+    partial.chmod(0o755)  # mkstemp's 0600 plus the linker's x bits otherwise
+    os.replace(partial, target)
     return target
 
 
