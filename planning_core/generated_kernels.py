@@ -350,6 +350,50 @@ class Arm2Metric(SpaceMetric):
         return (_rem(b[0] - u * d0, TAU), _rem(b[1] - u * d1, TAU))
 
 
+class SpaceshipStateMetric(SpaceMetric):
+    """Metric groups (x, y) w0, (dx, dy) w1 (* an angle). For spaceship's whole state,
+    left's whole state."""
+
+    def __init__(self, space: Any) -> None:
+        super().__init__(space)
+        self.w0: float = space.groups[0][1]
+        self.w1: float = space.groups[1][1]
+
+    def distance(self, a: State, b: State) -> float:
+        d0 = b[0] - a[0]
+        d1 = b[1] - a[1]
+        d2 = b[2] - a[2]
+        d3 = b[3] - a[3]
+        return self.w0 * sqrt(d0 * d0 + d1 * d1) + self.w1 * sqrt(d2 * d2 + d3 * d3)
+
+    def bound(self, q: State, lo: list[float], hi: list[float], slack: float) -> float:
+        v = q[0]
+        g0 = lo[0] - v
+        if g0 < 0.0:
+            g0 = v - hi[0]
+            if g0 < 0.0:
+                g0 = 0.0
+        v = q[1]
+        g1 = lo[1] - v
+        if g1 < 0.0:
+            g1 = v - hi[1]
+            if g1 < 0.0:
+                g1 = 0.0
+        v = q[2]
+        g2 = lo[2] - v
+        if g2 < 0.0:
+            g2 = v - hi[2]
+            if g2 < 0.0:
+                g2 = 0.0
+        v = q[3]
+        g3 = lo[3] - v
+        if g3 < 0.0:
+            g3 = v - hi[3]
+            if g3 < 0.0:
+                g3 = 0.0
+        return self.w0 * sqrt(g0 * g0 + g1 * g1) + self.w1 * sqrt(g2 * g2 + g3 * g3)
+
+
 class PendulumEuler:
     """pendulum, euler: theta' = omega; omega' = -g * cos(theta) + tau."""
 
@@ -1350,6 +1394,7 @@ METRICS: Final[dict[Any, Any]] = {
     ((False, False, True), ((0, 1), (2,))): Car1Metric,
     ((False, False, True), ((0, 1),)): Car1PositionMetric,
     ((True, True), ((0, 1),)): Arm2Metric,
+    ((False, False, False, False), ((0, 1), (2, 3))): SpaceshipStateMetric,
 }
 """Metric classes by ``kernels.metric_key`` of the space."""
 INTEGRATORS: Final[dict[Any, Any]] = {

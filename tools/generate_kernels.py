@@ -10,7 +10,8 @@ What is written, per registered family system: a metric class for its space, and
 for the goal that names only its position variables (the groups' variables kept,
 as ``kinoplan.make_goal`` keeps them), spaces of the same shape sharing one; for a
 kinodynamic system, an integrator class per scheme, and for one with a body a subclass
-that tests it too. Each does the float operations
+that tests it too. The grid ships' whole-state space (SST's witnesses) gets a metric
+class too. Each does the float operations
 of its reference in the same order (``spaces.StateSpace``, the kd-tree's
 ``nearest.metric.SpaceMetric.bound``, ``integrators.ReferenceIntegrator``);
 ``planning_core.kernels`` finds them by :func:`~planning_core.kernels.metric_key`
@@ -19,6 +20,7 @@ and :func:`~planning_core.kernels.integrator_key`.
 
 from __future__ import annotations
 
+import inspect
 import pprint
 import sys
 import textwrap
@@ -91,7 +93,25 @@ def metric_spaces() -> list[tuple[str, object, list[str], bool]]:
                 entry[2].append(users)
             if interpolates and not entry[3]:
                 found[metric_key(space)] = (*entry[:3], True)
+    for name, space in grid_state_spaces():
+        entry = found.setdefault(metric_key(space),
+                                 (f"{name.capitalize()}StateMetric", space, [], False))
+        entry[2].append(f"{name}'s whole state")
     return list(found.values())
+
+
+def grid_state_spaces() -> list[tuple[str, object]]:
+    """The grid systems' whole-state spaces with the velocities weighed (the ships':
+    SST's witnesses and its selection before a first solution), in registry order."""
+    spaces = []
+    for name in SYSTEM_MODULES:
+        system = load(name)
+        method = getattr(system, "state_space", None)
+        if isinstance(system, FamilySystem) or method is None:
+            continue
+        if "velocity_weight" in inspect.signature(method).parameters:
+            spaces.append((name, method(1.0, 1.0, velocity_weight=1.0)))
+    return spaces
 
 
 def _docstring(text: str) -> list[str]:

@@ -19,6 +19,7 @@ from planning_core.kinoplan import body_tester, make_goal
 from planning_core.kinoplan_text import parse_kinoplan
 from planning_core.nearest.kdtree import angle_slack
 from planning_core.nearest.metric import SpaceMetric
+from planning_core.spaces import StateSpace, Variable
 from planning_core.systems import SYSTEM_MODULES, load
 from planning_core.systems.family import FamilySystem, KinodynamicFamily
 from tests.planning_core.nearest.test_kdtree import make_state
@@ -27,6 +28,7 @@ from tools import generate_kernels
 ROOT = Path(__file__).resolve().parents[2]
 FAMILY = [name for name in SYSTEM_MODULES if isinstance(load(name), FamilySystem)]
 KINODYNAMIC = [name for name in FAMILY if isinstance(load(name), KinodynamicFamily)]
+SHIPS = [name for name, _ in generate_kernels.grid_state_spaces()]
 EXAMPLES = {"pendulum": "pendulum-t3", "car2": "car2-corridors", "unicycle": "unicycle-circles",
             "car1": "car1-scene1", "arm2": "arm2-pair1", "rigid2": "rigid2-scene1"}
 
@@ -73,10 +75,29 @@ def test_another_metric_shape_runs_the_reference_and_says_why():
         "metric groups)")
 
 
-@pytest.mark.parametrize("name", FAMILY)
+def ship_state_space(name: str):
+    """A grid ship's whole state on a 20 x 20 map, the velocities weighed 0.3 and, to be
+    sampled, bounded to [-3, 3] (the same metric shape and weights)."""
+    space = load(name).state_space(20.0, 20.0, velocity_weight=0.3)
+    bounded = StateSpace.from_metric(
+        tuple(v if v.low > -math.inf else Variable(v.name, -3.0, 3.0) for v in space.variables),
+        {",".join(space.variables[i].name for i in group): weight
+         for group, weight in space.groups})
+    assert kernels.metric_key(bounded) == kernels.metric_key(space)
+    assert bounded.groups == space.groups
+    return bounded
+
+
+@pytest.mark.parametrize("name", SHIPS)
+def test_the_ships_whole_state_runs_a_generated_metric(name):
+    assert type(kernels.space_metric(ship_state_space(name))).__module__ == kernels.GENERATED
+
+
+@pytest.mark.parametrize("name", FAMILY + SHIPS)
 def test_metrics_measure_bound_and_interpolate_as_the_references(name):
     rng = random.Random(name)
-    for space in goal_spaces(example(name).system):
+    spaces = [ship_state_space(name)] if name in SHIPS else goal_spaces(example(name).system)
+    for space in spaces:
         fast, reference = kernels.space_metric(space), SpaceMetric(space)
         interpolates = "interpolate" in type(fast).__dict__
         points: list = []
