@@ -30,6 +30,10 @@ class NearestIndex:
         """Indices of the ``k`` nearest inserted states, nearest first."""
         raise NotImplementedError
 
+    def nearest_within(self, query: Any, radius: float) -> int:
+        """:meth:`nearest` if it is at most ``radius`` from ``query``, else -1."""
+        raise NotImplementedError
+
     def within(self, query: Any, radius: float) -> list[int]:
         """Indices of the states at most ``radius`` from ``query`` (by the distance
         the structure orders by), sorted by (distance, index)."""

@@ -187,6 +187,21 @@ class KDTree(NearestIndex):
             return self._nearest_below(root, q, key, slack, math.inf, -1)[1]
         return self._nearest_in_leaf(root, q, math.inf, -1)[1]
 
+    def nearest_within(self, query: Sequence[float], radius: float) -> int:
+        """:meth:`nearest` when it lies at most ``radius`` away, else -1: the same search
+        with ``radius`` as the best so far from the start, so that no box farther away is
+        opened (SST's witness lookup, which asks only for a witness that close)."""
+        root = self._root
+        if root is None:
+            return -1
+        q, key, slack = self._prepare(query)
+        none = len(self._points)  # above every index: a point exactly ``radius`` away wins
+        if root.bucket is None:
+            found = self._nearest_below(root, q, key, slack, radius, none)[1]
+        else:
+            found = self._nearest_in_leaf(root, q, radius, none)[1]
+        return -1 if found == none else found
+
     def _nearest_below(self, node: _Node, q: State, key: State, slack: float,
                        best: float, best_i: int) -> tuple[float, int]:
         """The best of ``(best, best_i)`` and an inner node's points: the child on the

@@ -114,7 +114,6 @@ class _Search:
         self.nodes.add(start)
         self.witnesses: NearestIndex = si.new_state_nearest()
         self.witnesses.add(start)
-        self.witness_states = [start]
         self.reps = [0]
         """Each witness's representative (-1: none yet)."""
         self.best: Optional[int] = None
@@ -135,10 +134,9 @@ class _Search:
     def witness(self, state: Any) -> int:
         """The nearest witness if within the pruning radius, else ``state`` as a new
         one, without a representative."""
-        closest = self.witnesses.nearest(state)
-        if self.si.state_distance(self.witness_states[closest], state) <= self.pruning_radius:
+        closest = self.witnesses.nearest_within(state, self.pruning_radius)
+        if closest >= 0:
             return closest
-        self.witness_states.append(state)
         self.reps.append(-1)
         return self.witnesses.add(state)
 

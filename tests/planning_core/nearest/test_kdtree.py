@@ -104,6 +104,7 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
                 for k in (1, 5, 20):
                     assert structure.k_nearest(q, k) == first[:k], (n, q, k)
                 assert structure.within(q, radius) == inside, (n, q, radius)
+            assert tree.nearest_within(q, radius) == (inside[0] if inside else -1)
     assert len(tree) == len(scan) == n_points
     return tree
 
@@ -244,6 +245,8 @@ def test_removed_points_are_found_by_no_query(name):
             assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
             radius = left[min(len(left) - 1, rng.randrange(15))][0] if left else 1.0
             assert tree.within(q, radius) == [i for d, i in left if d <= radius]
+            assert tree.nearest_within(q, radius) == (left[0][1] if left and left[0][0] <= radius
+                                                      else -1)
     with pytest.raises(ValueError):
         tree.remove(next(iter(removed)))
 

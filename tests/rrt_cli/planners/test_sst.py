@@ -129,7 +129,7 @@ def test_each_witness_keeps_one_active_node_and_the_rest_is_never_found(text, ve
     state_distance, states = setup.si.state_distance, search.tree.states
     for witness, rep in enumerate(search.reps):
         if rep >= 0:
-            assert state_distance(search.witness_states[witness], states[rep]) \
+            assert state_distance(search.witnesses[witness], states[rep]) \
                 <= search.pruning_radius
     inactive = len(states) - len(active)
     assert inactive >= 10, "too few replaced nodes to test anything"
