@@ -363,5 +363,9 @@ class PositionNearest(NearestIndex):
         """By the positions' distance (its square against ``radius``'s)."""
         return self.index.within(target[0], target[1], radius)
 
+    def cheapest_within(self, target: tuple[float, ...], radius: float,
+                        costs: list[float]) -> int:
+        return self.index.cheapest_within(target[0], target[1], radius, costs)
+
     def remove(self, index: int) -> None:
         self.index.remove(index)

@@ -34,6 +34,15 @@ class NearestIndex:
         """:meth:`nearest` if it is at most ``radius`` from ``query``, else -1."""
         raise NotImplementedError
 
+    def cheapest_within(self, query: Any, radius: float, costs: list[float]) -> int:
+        """Of the states at most ``radius`` from ``query``, the one of least ``costs[i]``
+        (ties: the nearer, then the earliest); none there, :meth:`nearest` (SST's
+        best-near selection). A structure may answer it in one search."""
+        near = self.within(query, radius)
+        if not near:
+            return self.nearest(query)
+        return min(near, key=costs.__getitem__)
+
     def within(self, query: Any, radius: float) -> list[int]:
         """Indices of the states at most ``radius`` from ``query`` (by the distance
         the structure orders by), sorted by (distance, index)."""

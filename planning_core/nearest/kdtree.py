@@ -202,6 +202,43 @@ class KDTree(NearestIndex):
             found = self._nearest_in_leaf(root, q, radius, none)[1]
         return -1 if found == none else found
 
+    def cheapest_within(self, query: Sequence[float], radius: float,
+                        costs: list[float]) -> int:
+        """:meth:`NearestIndex.cheapest_within` in one search: a box is skipped when its
+        bound exceeds both ``radius`` and the nearest distance so far, so it visits what
+        :meth:`within` visits when a point lies within ``radius``, else what
+        :meth:`nearest` visits."""
+        root = self._root
+        if root is None:
+            raise ValueError("cheapest_within() on an empty structure")
+        q, key, slack = self._prepare(query)
+        metric, points = self._metric, self._points
+        near_d, near_i = math.inf, -1
+        cost, cost_d, cost_i = math.inf, math.inf, -1
+        nodes, bounds = [root], [0.0]
+        while nodes:
+            node, b = nodes.pop(), bounds.pop()
+            if b > radius and b > near_d:
+                continue
+            bucket = node.bucket
+            if bucket is None:
+                near, far = _children(node, key)
+                for child in (far, near):  # the near child popped first
+                    b = metric.bound(key, child.lo, child.hi, slack)
+                    if not (b > radius and b > near_d):
+                        nodes.append(child)
+                        bounds.append(b)
+                continue
+            for i in bucket:
+                d = metric.distance(q, points[i])
+                if d < near_d or (d == near_d and i < near_i):
+                    near_d, near_i = d, i
+                if d <= radius:
+                    c = costs[i]
+                    if c < cost or (c == cost and (d < cost_d or (d == cost_d and i < cost_i))):
+                        cost, cost_d, cost_i = c, d, i
+        return cost_i if cost_i >= 0 else near_i
+
     def _nearest_below(self, node: _Node, q: State, key: State, slack: float,
                        best: float, best_i: int) -> tuple[float, int]:
         """The best of ``(best, best_i)`` and an inner node's points: the child on the

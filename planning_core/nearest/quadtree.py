@@ -216,6 +216,17 @@ class QuadtreeNearest:
         found.pairs.sort()
         return [index for _, index in found.pairs]
 
+    def cheapest_within(self, x: float, y: float, radius: float, costs: list[float]) -> int:
+        """Of the points within ``radius`` of (x, y) (by squared distance, as
+        :meth:`within`), the one of least ``costs[i]`` (ties: the nearer, then the earliest
+        inserted); none there, :meth:`nearest`. One walk, pruned by ``radius`` or by the
+        nearest distance so far, whichever is larger (SST's best-near selection)."""
+        if not self.xs:
+            raise ValueError("cheapest_within() on an empty structure")
+        found = _Cheapest(self.xs, self.ys, x, y, radius * radius, costs)
+        self._search(x, y, found)
+        return found.cost_index if found.cost_index >= 0 else found.near_index
+
     def remove(self, index: int) -> None:
         """No query finds point ``index`` any more: it leaves its leaf (found by
         the quadrants :meth:`add` took; leaves never merge back)."""
@@ -246,6 +257,35 @@ class _Within(_Scan):
             if d2 <= limit:
                 pairs.append((d2, index))
         return limit
+
+
+class _Cheapest(_Scan):
+    """The cheapest point within a squared distance, and the nearest point."""
+
+    def __init__(self, xs: list[float], ys: list[float], x: float, y: float,
+                 limit: float, costs: list[float]) -> None:
+        self.xs, self.ys, self.x, self.y, self.limit, self.costs = xs, ys, x, y, limit, costs
+        self.near_d2, self.near_index = math.inf, -1
+        self.cost, self.cost_d2, self.cost_index = math.inf, math.inf, -1
+
+    def scan(self, indices: list[int]) -> float:
+        xs, ys, x, y, limit, costs = self.xs, self.ys, self.x, self.y, self.limit, self.costs
+        near_d2, near_index = self.near_d2, self.near_index
+        cost, cost_d2, cost_index = self.cost, self.cost_d2, self.cost_index
+        for index in indices:
+            ddx = xs[index] - x
+            ddy = ys[index] - y
+            d2 = ddx * ddx + ddy * ddy
+            if d2 < near_d2 or (d2 == near_d2 and index < near_index):
+                near_d2, near_index = d2, index
+            if d2 <= limit:
+                c = costs[index]
+                if c < cost or (c == cost and (d2 < cost_d2 or (d2 == cost_d2
+                                                               and index < cost_index))):
+                    cost, cost_d2, cost_index = c, d2, index
+        self.near_d2, self.near_index = near_d2, near_index
+        self.cost, self.cost_d2, self.cost_index = cost, cost_d2, cost_index
+        return near_d2 if near_d2 > limit else limit
 
 
 class _KNearest(_Scan):

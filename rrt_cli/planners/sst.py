@@ -126,10 +126,7 @@ class _Search:
     def select(self, target: Any) -> int:
         """The cheapest active node within the selection radius (ties: the nearer),
         else the nearest active node."""
-        near = self.nodes.within(target, self.selection_radius)
-        if not near:
-            return self.nodes.nearest(target)
-        return min(near, key=self.costs.__getitem__)
+        return self.nodes.cheapest_within(target, self.selection_radius, self.costs)
 
     def witness(self, state: Any) -> int:
         """The nearest witness if within the pruning radius, else ``state`` as a new

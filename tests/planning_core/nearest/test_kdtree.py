@@ -80,12 +80,14 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
     """Grow both structures point by point, querying in between."""
     rng = random.Random(seed)
     tree, scan = KDTree(space, leaf_capacity), LinearScan(space)
-    points = []
+    points: list = []
+    costs: list[float] = []  # few values: equal costs, ties broken by distance and index
     per_point = n_queries / n_points
     owed = 0.0
     for n in range(n_points):
         p = make_state(space, rng, points)
         points.append(p)
+        costs.append(float(rng.randrange(4)))
         assert tree.add(p) == scan.add(p) == n
         owed += per_point
         while owed >= 1.0:
@@ -105,6 +107,8 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
                     assert structure.k_nearest(q, k) == first[:k], (n, q, k)
                 assert structure.within(q, radius) == inside, (n, q, radius)
             assert tree.nearest_within(q, radius) == (inside[0] if inside else -1)
+            cheapest = min(inside, key=costs.__getitem__) if inside else first[0]
+            assert tree.cheapest_within(q, radius, costs) == cheapest, (n, q, radius)
     assert len(tree) == len(scan) == n_points
     return tree
 
@@ -247,6 +251,11 @@ def test_removed_points_are_found_by_no_query(name):
             assert tree.within(q, radius) == [i for d, i in left if d <= radius]
             assert tree.nearest_within(q, radius) == (left[0][1] if left and left[0][0] <= radius
                                                       else -1)
+            if left:
+                costs = [float(hash(i) % 3) for i in range(len(points))]
+                inside = [i for d, i in left if d <= radius]
+                assert tree.cheapest_within(q, radius, costs) == (
+                    min(inside, key=costs.__getitem__) if inside else left[0][1])
     with pytest.raises(ValueError):
         tree.remove(next(iter(removed)))
 

@@ -73,8 +73,13 @@ def test_within_and_remove_match_brute_force():
             assert tree.k_nearest(qx, qy, 7) == alive[:7]
             d2 = [(tree.xs[k] - qx) ** 2 + (tree.ys[k] - qy) ** 2 for k in alive]
             radius = math.sqrt(d2[min(len(d2) - 1, rng.randrange(30))]) if d2 else 1.0
-            assert tree.within(qx, qy, radius) == [k for k, d in zip(alive, d2)
-                                                   if d <= radius * radius]
+            inside = [k for k, d in zip(alive, d2) if d <= radius * radius]
+            assert tree.within(qx, qy, radius) == inside
+            if alive:  # few cost values: ties go to the nearer, then the earlier
+                costs = [float(rng.randrange(3)) for _ in tree.xs]
+                assert tree.cheapest_within(qx, qy, radius, costs) == (
+                    min(inside, key=costs.__getitem__) if inside else alive[0])
+                assert tree.cheapest_within(qx, qy, 0.0, costs) == alive[0]
     with pytest.raises(ValueError):
         tree.remove(next(iter(removed)))
     with pytest.raises(ValueError):
