@@ -14,6 +14,7 @@ import pytest
 
 from planning_core import kernels
 from planning_core.nearest import kdtree
+from planning_core.nearest.index import NearestIndex
 from planning_core.nearest.kdtree import KDTree, LinearScan, angle_slack
 from planning_core.nearest.metric import SpaceMetric
 from planning_core.spaces import StateSpace, Variable
@@ -109,6 +110,7 @@ def compare(space, n_points, n_queries, leaf_capacity, seed, scan_every=1):
             assert tree.nearest_within(q, radius) == (inside[0] if inside else -1)
             cheapest = min(inside, key=costs.__getitem__) if inside else first[0]
             assert tree.cheapest_within(q, radius, costs) == cheapest, (n, q, radius)
+            assert NearestIndex.cheapest_within(tree, q, radius, costs) == cheapest
     assert len(tree) == len(scan) == n_points
     return tree
 
