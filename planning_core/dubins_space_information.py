@@ -142,6 +142,14 @@ class DubinsSpaceInformation:
         heading as every target of the car's is (:class:`PoseFrontier`)."""
         return PoseFrontier(self.world.frontier(), self._heading)
 
+    def pinch_points(self) -> list[tuple[float, float, float]]:
+        """The map's pinch points (:meth:`GridWorld.pinch_points`), each as the two
+        poses that pass it along its free diagonal: heading up-right and down-left."""
+        poses = []
+        for x, y in self.world.pinch_points():
+            poses += [(x, y, 0.25 * math.pi), (x, y, 1.25 * math.pi)]
+        return poses
+
 
 class PoseFrontier:
     """A grid frontier (:class:`~planning_core.worlds.grid_frontier.FrontierCells`) for

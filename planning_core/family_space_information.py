@@ -47,6 +47,10 @@ class FamilySpaceInformation:
         """No frontier of cells in a continuous space."""
         return None
 
+    def pinch_points(self) -> list:
+        """None here: no state of a continuous world is passable only exactly."""
+        return []
+
     def goal_target(self, goal: Any, rng: random.Random) -> State:
         """The goal's values; the variables it does not name from a uniform sample
         (one draw per variable; none when the goal names every variable)."""

@@ -118,6 +118,11 @@ class GridGeometricSpaceInformation:
         """An empty frontier of the map's free cells."""
         return self.world.frontier()
 
+    def pinch_points(self) -> list[tuple[float, float]]:
+        """The map's corners between two diagonal blocked cells that a path may pass
+        through (:meth:`GridWorld.pinch_points`)."""
+        return self.world.pinch_points()
+
 
 @dataclass(frozen=True)
 class GridControlOptions:

@@ -125,6 +125,10 @@ class GeometricSpaceInformation(Protocol):
     def frontier(self) -> Any:
         """An empty frontier of cells (RRT-Connect's targets), or None."""
 
+    def pinch_points(self) -> Sequence[State]:
+        """States a path may pass only exactly through (a grid's corners between two
+        diagonal blocked cells): RRT*'s occasional targets once it has a solution."""
+
 
 class ControlSpaceInformation(Protocol):
     """A system driven by controls, in a world."""

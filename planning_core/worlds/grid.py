@@ -107,6 +107,23 @@ class GridWorld:
         from planning_core.worlds.grid_frontier import FrontierCells
         return FrontierCells(self.problem)
 
+    def pinch_points(self) -> list[tuple[float, float]]:
+        """The interior grid corners a path may pass only exactly through: the cells
+        below-right and above-left of the corner are blocked, the two others free.
+        The corner itself lies in the free above-right cell (cells are half-open),
+        so a segment from the below-left cell to it and on is free. Row by row from
+        the bottom."""
+        width, cells = self.width, self.cells
+        pinches: list[tuple[float, float]] = []
+        for row in range(1, self.height):
+            above = row * width
+            below = above - width
+            for col in range(1, width):
+                if cells[below + col] and cells[above + col - 1] \
+                        and not cells[below + col - 1] and not cells[above + col]:
+                    pinches.append((float(col), float(row)))
+        return pinches
+
 
     def first_sampled_collision(self, x0: float, y0: float, x1: float, y1: float,
                                 step: float = SAMPLE_STEP) -> tuple[float, float] | None:

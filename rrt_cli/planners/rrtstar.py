@@ -4,7 +4,8 @@ the point vehicle and the geometric family (arm2, rigid2).
 
 Each iteration draws a target (until a node is in the goal region: the goal with
 probability ``goal_bias``, else mostly a point of the tree's frontier where the world
-has one, ``frontier_targets``; otherwise, and always after, a uniform state), takes
+has one, ``frontier_targets``; after it, now and then one of the world's pinch points,
+``pinch_targets``; otherwise a uniform state), takes
 the tree node nearest to it and steers toward it as RRT does
 (:class:`StraightLineSteering`: straight, at most ``extent_fraction`` of the space's
 extent, a blocked motion cut short ``wall_clearance`` before its first invalid state).
@@ -32,7 +33,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
-from planning_core.samplers import uniform
+from planning_core.samplers import randint, uniform
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.prmstar import star_neighbor_count
 from rrt_cli.planners.steering import StraightLineSteering
@@ -58,6 +59,10 @@ class RRTStarParams:
     """Until the first solution, the share of targets drawn from the tree's frontier
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT-Connect's); after it, none (the optimization draws as the paper's)."""
+    pinch_targets: float = 0.01
+    """After the first solution, the share of targets that are the world's pinch
+    points where it has any (``si.pinch_points``: passable only by a node exactly
+    there); the rest as the paper's."""
     partial_extension: bool = True
     """A blocked extension goes as far as it is free instead of adding nothing."""
     min_extension: float = 0.01
@@ -156,6 +161,9 @@ class StarSearch:
         if self.frontier is not None:
             self.frontier.cover(pdef.start)
         self.draw_target = draw_target
+        self.pinch_share = params.pinch_targets
+        self.pinches: Optional[list[State]] = None
+        """The world's pinch points, found when first drawn (after a solution)."""
         self.distance, self.first_hit = si.distance, si.first_hit
         self.steering = StraightLineSteering(si, params.partial_extension,
                                              params.min_extension, params.wall_clearance)
@@ -192,7 +200,8 @@ class StarSearch:
 
     def _target(self) -> Optional[State]:
         """Until a node is in the goal region: the goal (``goal_bias``), else a frontier
-        cell's point (``frontier_targets``); then ``draw_target``'s."""
+        cell's point (``frontier_targets``); after, a pinch point (``pinch_targets``);
+        then ``draw_target``'s."""
         rng = self.rng
         if not self.goal_nodes:
             if uniform(rng) < self.goal_bias:
@@ -200,6 +209,12 @@ class StarSearch:
             frontier = self.frontier
             if frontier and uniform(rng) < self.frontier_share:
                 return frontier.sample(rng)
+        elif self.pinch_share > 0.0:
+            if self.pinches is None:
+                self.pinches = list(self.si.pinch_points())
+            pinches = self.pinches
+            if pinches and uniform(rng) < self.pinch_share:
+                return pinches[randint(rng, 0, len(pinches) - 1)]
         return self.draw_target(self.best_cost)
 
     def _steer(self, target: State) -> Optional[tuple[int, State]]:

@@ -237,3 +237,19 @@ def test_the_frontier_gives_poses_in_the_cells_beside_the_nodes():
         (0, 2), (1, 1), (1, 3), (2, 4), (3, 3)}  # (2, 2) is blocked; covered cells left out
     assert all(0.0 <= heading < 2 * math.pi for _, _, heading in poses)
     assert len({round(heading, 3) for _, _, heading in poses}) > 150
+
+
+def test_pinch_poses_pass_the_pinch_along_its_free_diagonal():
+    """The car's pinch targets: each of the grid's pinch points with the two headings
+    that go through it (course space-0's at (3, 1)); a short straight motion into and
+    out of each is free, one beside the corner is not."""
+    path = next(p for p in COURSE_PROBLEMS if p.stem == "space-0")
+    si = grid_setup(parse_problem(path.read_text()), Vehicle.DUBINS).si
+    poses = si.pinch_points()
+    assert poses == [(3.0, 1.0, 0.25 * math.pi), (3.0, 1.0, 1.25 * math.pi)]
+    for x, y, heading in poses:
+        dx, dy = 0.2 * math.cos(heading), 0.2 * math.sin(heading)
+        assert si.first_hit((x - dx, y - dy, heading), (x, y, heading)) is None
+        assert si.first_hit((x, y, heading), (x + dx, y + dy, heading)) is None
+        beside = (x - dx + 0.01, y - dy, heading), (x + dx + 0.01, y + dy, heading)
+        assert si.first_hit(*beside) is not None

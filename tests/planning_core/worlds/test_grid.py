@@ -88,3 +88,27 @@ def test_flood_fill_connectivity_with_and_without_diagonals():
     problem = Problem(2, 2, bytes([0, 1, 1, 0]), (0.5, 0.5), (1.5, 1.5))
     assert not connected_free_cells(problem, (0, 0), diagonal=False)[3]
     assert connected_free_cells(problem, (0, 0), diagonal=True)[3]
+
+
+def test_pinch_points_are_the_corners_passable_only_exactly():
+    # Rows from the top. Pinches at (2, 3), (4, 3) and (1, 4); at (3, 3) the other
+    # diagonal is blocked, and its corner point lies in a blocked cell: no passage.
+    text = "6\n5\n#_____\n_#_#__\n__#_#_\n______\n_____#\n0.5\n0.5\n5.5\n3.5\n"
+    world = GridWorld(parse_problem(text))
+    pinches = world.pinch_points()
+    assert pinches == [(2.0, 3.0), (4.0, 3.0), (1.0, 4.0)]  # row by row from the bottom
+    for x, y in pinches:
+        assert world.first_blocked_cell_on_segment(x - 0.5, y - 0.5, x + 0.5, y + 0.5) is None
+        for dx, dy in ((1e-9, -1e-9), (-1e-9, 1e-9)):  # beside the corner: blocked
+            assert world.first_blocked_cell_on_segment(
+                x - 0.5 + dx, y - 0.5 + dy, x + 0.5 + dx, y + 0.5 + dy) is not None
+    corners = [(x, y) for x in range(1, world.width) for y in range(1, world.height)]
+    for x, y in corners:  # every other interior corner: no such passage
+        if (x, y) in pinches:
+            continue
+        through = world.first_blocked_cell_on_segment(x - 0.5, y - 0.5, x + 0.5, y + 0.5)
+        nudged = [world.first_blocked_cell_on_segment(x - 0.5 + d, y - 0.5 - d,
+                                                       x + 0.5 + d, y + 0.5 - d)
+                  for d in (1e-9, -1e-9)]
+        assert through is not None or None in nudged, (x, y)
+    assert GridWorld(parse_problem(SPACE0)).pinch_points() == [(3.0, 1.0)]

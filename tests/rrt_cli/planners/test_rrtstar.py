@@ -224,3 +224,20 @@ def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_
                            random.Random(1), rrtstar.Params(frontier_targets=share)).solved
              for share in (0.9, 0.0)]
     assert found == [True, False]
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_pinch_targets_take_the_pinch_that_other_targets_miss(name):
+    # course space-0's shortest path passes (3, 1), where two blocked cells touch corner
+    # to corner; round the cell above, no path is shorter than 4.05 (3.78 through it).
+    setup = setup_of("space-0")
+    assert setup.si.pinch_points() == [(3.0, 1.0)]
+    module = MODULES[name]
+    costs = {}
+    for share in (0.01, 0.0):
+        result = module.solve(setup.si, optimizing(setup),
+                              StopCondition(60, max_iterations=1000), random.Random(1),
+                              module.Params(pinch_targets=share))
+        costs[share] = assert_valid(setup, result).cost
+        assert ((3.0, 1.0) in result.path) == (share > 0.0)
+    assert costs[0.01] < 3.85 < 4.0 < costs[0.0]
