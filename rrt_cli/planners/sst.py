@@ -19,13 +19,19 @@ without children is pruned from the tree, and its parent too once that is inacti
 childless, and so on up.
 
 Departures from OMPL's ``control::SST`` (read for the algorithm, not copied):
-a random motion cut short by an invalid slice is kept, up to its last valid slice
-(OMPL drops it); on the grid's ships, whose output holds one control per step, a
-motion of ``k`` steps is ``k`` chained nodes, each judged against its witness in
-turn (the chain ends at the first that is not the cheapest there); the nodes of
-the best solution are never pruned (they may turn inactive), so the printed tree
-(the nodes still in the tree at the end) holds the printed path, where OMPL keeps
-a copy of the path instead. Neither changes which nodes can be selected.
+- until the first solution, where the world measures the distance to the goal along
+  its free cells (the grid's ships), a share of iterations (``guided_share``) extends
+  the active node nearest the goal by it instead of the best-near node, each node
+  once (RG-RRT's guide: without steering, targets pull the tree toward the goal only
+  in a straight line, which in a maze is the wrong corridor);
+- a random motion cut short by an invalid slice is kept, up to its last valid slice
+  (OMPL drops it);
+- on the grid's ships, whose output holds one control per step, a motion of ``k``
+  steps is ``k`` chained nodes, each judged against its witness in turn (the chain
+  ends at the first that is not the cheapest there);
+- the nodes of the best solution are never pruned (they may turn inactive), so the
+  printed tree (the nodes still in the tree at the end) holds the printed path, where
+  OMPL keeps a copy of the path instead.
 
 Without an objective the search ends at the first node in the goal region; with
 ``pdef.objective`` it keeps going, each cheaper goal node the new answer, until
@@ -38,8 +44,10 @@ from __future__ import annotations
 import random
 import time
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
+from planning_core.heap import HeapEntry, heap_pop, heap_push
+from planning_core.interrupt import Stop
 from planning_core.nearest.index import NearestIndex
 from planning_core.problem_definition import ProblemDefinition
 from planning_core.samplers import uniform
@@ -65,13 +73,18 @@ class SSTParams:
     """Until the first solution, the share of targets drawn from the tree's frontier
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT*'s); after it none (the paper's draws). 0: OMPL's draws throughout."""
+    guided_share: float = 0.2
+    """Until the first solution, the share of iterations that extend, instead of the
+    best-near node, the active node nearest the goal along the free cells where the
+    world measures that (the grid's ships; judged where braking would stop it, as
+    RG-RRT's), each node once; after it none. 0: OMPL's selection throughout."""
     refine_by_distance: bool = True
     """After the first solution, select by ``si.distance`` (the ships: the position; the
     cost is the path's length, so the cheapest node near a place is the one to extend)
     rather than the whole state. False: the paper's whole-state selection throughout."""
 
     def __post_init__(self) -> None:
-        for name in ("goal_bias", "frontier_targets"):
+        for name in ("goal_bias", "frontier_targets", "guided_share"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise ValueError(f"{name} must be in [0, 1]")
         for name in ("selection_radius", "pruning_radius"):
@@ -88,7 +101,7 @@ class _Search:
     witnesses and their representatives, the best goal node."""
 
     def __init__(self, si: ControlSpaceInformation, pdef: ProblemDefinition,
-                 rng: random.Random, params: SSTParams):
+                 rng: random.Random, params: SSTParams, stop: Stop = None):
         self.si, self.rng, self.goal, self.goal_bias = si, rng, pdef.goal, params.goal_bias
         self.refine_by_distance = params.refine_by_distance
         self.by_distance = False
@@ -122,6 +135,15 @@ class _Search:
         self.frontier = si.frontier() if self.frontier_share > 0.0 else None
         if self.frontier is not None:
             self.frontier.cover(start)
+        self.guided_share = params.guided_share
+        along = (si.distance_along_free_space(pdef.goal, stop) if self.guided_share > 0.0
+                 else None)
+        self.guide_key: Optional[Callable[[Any], float]] = (
+            None if along is None else si.stopping_point_key(along))
+        self.guide: list[HeapEntry] = []
+        """Active nodes not yet guided, by :attr:`guide_key` (until the first solution)."""
+        if self.guide_key is not None:
+            heap_push(self.guide, HeapEntry(self.guide_key(start), 0))
 
     def select(self, target: Any) -> int:
         """The cheapest active node within the selection radius (ties: the nearer),
@@ -140,8 +162,13 @@ class _Search:
     def iterate(self) -> Optional[int]:
         """One iteration; a goal node cheaper than the best so far, or None."""
         self.iterations += 1
-        node = self.select(self.target())
         si, rng = self.si, self.rng
+        node = -1
+        if self.guide_key is not None and self.best is None \
+                and uniform(rng) < self.guided_share:
+            node = self.guided()
+        if node < 0:
+            node = self.select(self.target())
         motion = si.random_motion(self.tree.states[node], rng)
         if motion is None:
             return None
@@ -160,6 +187,15 @@ class _Search:
                 best = self.best
                 return node if best is None or cost < self.costs[best] else None
         return None
+
+    def guided(self) -> int:
+        """The active node nearest the goal (:attr:`guide_key`) not guided before, or -1."""
+        guide, active = self.guide, self.active
+        while guide:
+            node = heap_pop(guide).order
+            if active[node]:
+                return node
+        return -1
 
     def target(self) -> Any:
         """:meth:`point_target` as a whole state (``si.state_target``); after the first
@@ -196,6 +232,8 @@ class _Search:
         self.in_tree.append(True)
         self.pinned.append(False)
         self.nodes.add(state)
+        if self.guide_key is not None and self.best is None:
+            heap_push(self.guide, HeapEntry(self.guide_key(state), node))
         return node
 
     def deactivate(self, node: int) -> None:
@@ -218,6 +256,7 @@ class _Search:
         """``goal_node`` is the new answer: its path is pinned, the old one's not."""
         old = self.best
         self.best = goal_node
+        self.guide = []  # guided iterations end with the first solution
         if old is not None:
             self.pin(old, False)
         self.pin(goal_node, True)
@@ -256,7 +295,7 @@ def solve(si: ControlSpaceInformation, pdef: ProblemDefinition, stop: StopCondit
     if not si.system.kinodynamic:
         raise ValueError("SST plans for kinodynamic systems only")
     began = time.perf_counter()
-    search = _Search(si, pdef, rng, params)
+    search = _Search(si, pdef, rng, params, stop.time_is_up)
     solved = start_in_goal(si, pdef, search.tree, began)
     if solved is not None:
         return solved
