@@ -48,7 +48,7 @@ class FamilySpaceInformation:
         return None
 
     def pinch_points(self) -> list:
-        """None here: no state of a continuous world is passable only exactly."""
+        """Empty: no state of a continuous world is passable only exactly."""
         return []
 
     def goal_target(self, goal: Any, rng: random.Random) -> State:
