@@ -278,7 +278,7 @@ def test_guided_iterations_take_the_active_nodes_nearest_the_goal_each_once():
 
 def test_guidance_finds_a_first_path_sooner():
     """narrow-20, the plain ship, seeds 1-6, 1500 iterations each: guided, every run
-    solves (measured: 252-1404 iterations); unguided, at most half (485-17848)."""
+    solves; unguided, at most half (docs/optimal-planning.md has the medians)."""
     setup = _setup((ROOT / "benchmarks" / "problems" / "narrow-20.sw").read_text(),
                    Vehicle.SPACESHIP)
     solved = []
