@@ -73,11 +73,15 @@ class SSTParams:
     """Until the first solution, the share of targets drawn from the tree's frontier
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT*'s); after it none (the paper's draws). 0: OMPL's draws throughout."""
-    guided_share: float = 0.2
+    guided_share: float = 0.8
     """Until the first solution, the share of iterations that extend, instead of the
     best-near node, the active node nearest the goal along the free cells where the
     world measures that (the grid's ships; judged where braking would stop it, as
     RG-RRT's), each node once; after it none. 0: OMPL's selection throughout."""
+    guided_reach: bool = True
+    """A guided node is extended by every control of the reachable set held one step
+    (RG-RRT's: coasting and full thrust at evenly spaced angles, braking included), not
+    by one random motion: a best-first search among the guided nodes."""
     refine_by_distance: bool = True
     """After the first solution, select by ``si.distance`` (the ships: the position; the
     cost is the path's length, so the cheapest node near a place is the one to extend)
@@ -142,8 +146,12 @@ class _Search:
             None if along is None else si.stopping_point_key(along))
         self.guide: list[HeapEntry] = []
         """Active nodes not yet guided, by :attr:`guide_key` (until the first solution)."""
+        self.guide_controls: tuple = ()
+        """A guided node's extensions (``guided_reach``): the reachable set's controls."""
         if self.guide_key is not None:
             heap_push(self.guide, HeapEntry(self.guide_key(start), 0))
+            if params.guided_reach:
+                self.guide_controls = tuple(si.reachable_controls())
 
     def select(self, target: Any) -> int:
         """The cheapest active node within the selection radius (ties: the nearer),
@@ -163,16 +171,35 @@ class _Search:
         """One iteration; a goal node cheaper than the best so far, or None."""
         self.iterations += 1
         si, rng = self.si, self.rng
-        node = -1
         if self.guide_key is not None and self.best is None \
                 and uniform(rng) < self.guided_share:
             node = self.guided()
-        if node < 0:
-            node = self.select(self.target())
-        motion = si.random_motion(self.tree.states[node], rng)
+            if node >= 0:
+                return self.expand(node) if self.guide_controls else self.extend(
+                    node, si.random_motion(self.tree.states[node], rng))
+        node = self.select(self.target())
+        return self.extend(node, si.random_motion(self.tree.states[node], rng))
+
+    def expand(self, node: int) -> Optional[int]:
+        """Every control of the reachable set held one step from ``node``; the first
+        goal node made, or None."""
+        state, propagate = self.tree.states[node], self.si.propagate_valid
+        for control in self.guide_controls:
+            end = propagate(state, control)
+            if end is not None:
+                goal_node = self.extend(node, (control, (end,)))
+                if goal_node is not None:
+                    return goal_node
+        return None
+
+    def extend(self, node: int, motion: Optional[tuple[Any, Any]]) -> Optional[int]:
+        """``motion`` (a control and its steps' states) from ``node``, each step a node
+        while it is the cheapest at its witness; a goal node cheaper than the best so
+        far, or None."""
         if motion is None:
             return None
         control, steps = motion
+        si = self.si
         for state in steps:
             cost = self.costs[node] + si.motion_cost(self.tree.states[node], control, state)
             witness = self.witness(state)

@@ -25,6 +25,7 @@ from tests.rrt_cli.test_family_kinodynamic_planners import KINODYNAMIC_PROBLEMS,
 from validator.checks import validate_plan
 
 FAMILY = ROOT / "benchmarks" / "problems" / "family"
+SST_DEFAULTS = sst.SSTParams()
 
 
 def _setup(text: str, vehicle: Vehicle | None = None):
@@ -282,7 +283,7 @@ def test_guidance_finds_a_first_path_sooner():
     setup = _setup((ROOT / "benchmarks" / "problems" / "narrow-20.sw").read_text(),
                    Vehicle.SPACESHIP)
     solved = []
-    for share in (0.2, 0.0):
+    for share in (SST_DEFAULTS.guided_share, 0.0):
         results = [sst.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=1500),
                              random.Random(seed), sst.SSTParams(guided_share=share))
                    for seed in range(1, 7)]
@@ -292,3 +293,43 @@ def test_guidance_finds_a_first_path_sooner():
                 assert report.valid, report.first_failure
         solved.append(sum(result.solved for result in results))
     assert solved[0] == 6 and solved[1] <= 3, solved
+
+
+def test_a_guided_node_is_extended_by_the_reachable_set():
+    """A guided iteration extends its node by each control of ``si.reachable_controls``
+    held one step: every node it adds is that node's child by one of those controls,
+    exactly where the control leads; with ``guided_reach=False`` one random motion."""
+    setup = _setup(ZIGZAG, Vehicle.LEFT_SPACESHIP)
+    controls = setup.si.reachable_controls()
+    search = sst._Search(setup.si, setup.pdef, random.Random(5), sst.SSTParams())
+    assert search.guide_controls == tuple(controls)
+    for _ in range(30):
+        node, before = search.guided(), len(search.tree.states)
+        assert node >= 0
+        search.expand(node)
+        added = range(before, len(search.tree.states))
+        assert all(search.tree.parents[k] == node and search.tree.controls[k] in controls
+                   and search.tree.states[k] == setup.si.propagate_valid(
+                       search.tree.states[node], search.tree.controls[k]) for k in added)
+    assert len(search.tree.states) > 30
+    assert sst._Search(setup.si, setup.pdef, random.Random(5),
+                       sst.SSTParams(guided_reach=False)).guide_controls == ()
+
+
+def test_the_left_only_ship_takes_the_50_cell_maze():
+    """maze-50, the left-only ship, seeds 1-3, 6000 iterations: with the reachable set
+    every run solves, valid; with one random motion per guided node none does (its
+    right turns need a near stop, which random controls seldom give)."""
+    setup = _setup((ROOT / "benchmarks" / "problems" / "maze-50.sw").read_text(),
+                   Vehicle.LEFT_SPACESHIP)
+    solved = []
+    for reach in (True, False):
+        results = [sst.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=6000),
+                             random.Random(seed), sst.SSTParams(guided_reach=reach))
+                   for seed in range(1, 4)]
+        for result in results:
+            if result.solved:
+                report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+                assert report.valid, report.first_failure
+        solved.append(sum(result.solved for result in results))
+    assert solved == [3, 0], solved
