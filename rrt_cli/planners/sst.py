@@ -22,8 +22,10 @@ Departures from OMPL's ``control::SST`` (read for the algorithm, not copied):
 - until the first solution, where the world measures the distance to the goal along
   its free cells (the grid's ships), a share of iterations (``guided_share``) extends
   the active node nearest the goal by it instead of the best-near node, each node
-  once (RG-RRT's guide: without steering, targets pull the tree toward the goal only
-  in a straight line, which in a maze is the wrong corridor);
+  once, by every control of RG-RRT's reachable set held one step (``guided_reach``;
+  RG-RRT's guide: without steering, targets pull the tree toward the goal only in a
+  straight line, which in a maze is the wrong corridor, and a random control seldom
+  brakes, which the left-only ship needs to turn right in a corridor);
 - a random motion cut short by an invalid slice is kept, up to its last valid slice
   (OMPL drops it);
 - on the grid's ships, whose output holds one control per step, a motion of ``k``
