@@ -38,13 +38,21 @@ State = tuple[float, ...]
 uncompiled modules, and a type from one is ``Any`` here (every ``key[i]`` a generic look-up)."""
 TAU: Final[float] = _METRIC_TAU
 """2 pi, read natively in the compiled build (a global read from the module's dict else)."""
+BALANCE: Final[float] = 0.7
+"""A scapegoat tree's alpha: a subtree of n points is rebuilt when an add lands deeper
+than log(n) / log(1 / BALANCE) below it (about twice a balanced tree's depth)."""
+_DEPTH_PER_LOG: Final[float] = 1.0 / math.log(1.0 / BALANCE)
+_SPLIT_SAMPLE: Final[int] = 64
+"""A split's median is of at most about this many of the bucket's values."""
 
 
 class KDTree(NearestIndex):
     """A bucketed kd-tree with incremental inserts.
 
     A leaf holds up to ``leaf_capacity`` point indices; past that it splits at
-    the median of its widest axis (width times the axis's metric weight). A
+    the median of its widest axis (width times the axis's metric weight). A subtree
+    that an add finds too deep for its size is rebuilt from its points (a scapegoat
+    tree's rule, ``BALANCE``), so points added in a walk stay O(log n) deep. A
     query goes depth-first, the child on the query's side of the split first;
     the other child waits on the stack with its box bound and is skipped if
     that bound exceeds the worst distance kept by then. A leaf reached on the
@@ -72,6 +80,7 @@ class KDTree(NearestIndex):
         self._extent = 0.0  # the largest |angle| added, for the slack
         self._slack_extent, self._slack = 0.0, angle_slack(0.0)  # the last slack and its extent
         self._root: _Node | None = None
+        self._path: list[_Node] = []  # add()'s inner nodes, reused
 
     def __len__(self) -> int:
         return len(self._points)
@@ -92,19 +101,65 @@ class KDTree(NearestIndex):
         if node is None:
             self._root = self._leaf([index])
             return index
-        axes = self._axes
+        axes, path = self._axes, self._path
+        path.clear()
         while True:
             _widen(node.lo, node.hi, key, axes)
+            node.size += 1
             bucket = node.bucket
             if bucket is not None:
                 break
+            path.append(node)
             child = node.left if key[node.axis] < node.split else node.right
             assert child is not None  # an inner node has both children
             node = child
         bucket.append(index)
         if len(bucket) > self.leaf_capacity:
             self._split(node)
+            if node.bucket is None:
+                path.append(node)  # now inner, above the new point's leaf
+        if path and len(path) > self._depth_limit(path[0].size):  # path[0]: the root
+            self._rebalance(path)
         return index
+
+    @staticmethod
+    def _depth_limit(size: int) -> float:
+        """How deep below a node of ``size`` points a leaf may lie before the node is
+        rebuilt: ``log(size) / log(1 / BALANCE)``."""
+        return math.log(size) * _DEPTH_PER_LOG
+
+    def _rebalance(self, path: list[_Node]) -> None:
+        """A scapegoat tree's repair (Galperin and Rivest 1993): rebuild the lowest
+        node on ``path`` (the root first) that is deeper above the new point's leaf
+        than :meth:`_depth_limit` of its own size allows; the root is, so one is.
+        Points added in a walk (SST's best-first steps down a corridor) would otherwise
+        make a chain of splits, each add and query as deep as it."""
+        height = 0
+        for node in reversed(path):
+            height += 1
+            if height > self._depth_limit(node.size):
+                self._rebuild(node)
+                return
+
+    def _rebuild(self, node: _Node) -> None:
+        """``node``'s subtree made anew from the points still in it (median splits,
+        tight boxes), in place: its parent keeps pointing at it."""
+        indices: list[int] = []
+        stack = [node]
+        while stack:
+            below = stack.pop()
+            bucket = below.bucket
+            if bucket is None:
+                assert below.left is not None and below.right is not None
+                stack.append(below.right)
+                stack.append(below.left)
+            else:
+                indices.extend(bucket)
+        fresh = self._leaf(indices)  # never empty: it holds the point just added
+        self._split(fresh)
+        node.lo, node.hi, node.axis, node.split = fresh.lo, fresh.hi, fresh.axis, fresh.split
+        node.left, node.right, node.bucket, node.size = (fresh.left, fresh.right,
+                                                         fresh.bucket, fresh.size)
 
     def remove(self, index: int) -> None:
         """No query finds point ``index`` any more: it leaves its leaf's bucket, found
@@ -140,7 +195,12 @@ class KDTree(NearestIndex):
         if axis < 0 or hi[axis] <= lo[axis] or bucket is None:
             return  # all points coincide on the metric axes: the leaf just grows
         keys = self._keys
-        values = sorted([keys[i][axis] for i in bucket])
+        # A big bucket (a rebuild's) splits at the median of a sample: the same halves
+        # near enough, without sorting every point at every level.
+        step = len(bucket) // _SPLIT_SAMPLE + 1
+        values = sorted([keys[i][axis] for i in bucket[::step]])
+        if values[0] == values[-1] and step > 1:  # the sample all equal: every value
+            values = sorted([keys[i][axis] for i in bucket])
         split = values[len(values) // 2]
         if split == values[0]:  # keep the left side non-empty: the next larger value
             split = values[bisect.bisect_right(values, split)]
@@ -339,11 +399,13 @@ class _Node:
     holds their indices in ``bucket``, an inner node splits at ``split`` on
     ``axis`` (keys below it go ``left``) and has ``bucket = None``."""
 
-    __slots__ = ("lo", "hi", "axis", "split", "left", "right", "bucket")
+    __slots__ = ("lo", "hi", "axis", "split", "left", "right", "bucket", "size")
 
     def __init__(self, lo: list[float], hi: list[float], bucket: list[int] | None) -> None:
         self.lo = lo
         self.hi = hi
+        self.size: int = 0 if bucket is None else len(bucket)
+        """Points added below since the node was made (removed ones too): balance."""
         self.axis = -1
         self.split = 0.0
         self.left: _Node | None = None

@@ -262,6 +262,45 @@ def test_removed_points_are_found_by_no_query(name):
         tree.remove(next(iter(removed)))
 
 
+def _depth(node) -> int:
+    if node.bucket is not None:
+        return 0
+    return 1 + max(_depth(node.left), _depth(node.right))
+
+
+@pytest.mark.parametrize("name", ["R2", "trailer5"])
+def test_a_walk_of_inserts_stays_shallow_and_exact(name):
+    """Points added along a walk (as SST's best-first steps down a corridor) would
+    make a chain of splits; the tree rebuilds an unbalanced subtree, so its depth stays
+    within the scapegoat bound, and every query still answers as the definition, with
+    points removed on the way."""
+    space, rng = SPACES[name](), random.Random(3)
+    tree, points, removed = KDTree(space, 2), [], set()
+    base = list(space.sample_uniform(rng))
+    for n in range(900):
+        row, step = divmod(n, 60)
+        base[0], base[1] = (step if row % 2 == 0 else 59 - step) / 6.0, row / 1.5
+        points.append(tuple(base))
+        tree.add(points[-1])
+        assert _depth(tree._root) <= math.log(n + 1) / math.log(1 / kdtree.BALANCE) + 1
+        if n > 40 and n % 3:
+            for gone in range(n - 40, n - 38):
+                if gone not in removed:
+                    tree.remove(gone)
+                    removed.add(gone)
+        if n % 25 == 0:
+            q = make_state(space, rng, points)
+            left = sorted(pair for pair in ranked(space, points, q) if pair[1] not in removed)
+            assert tree.nearest(q) == left[0][1]
+            assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
+            radius = left[min(len(left) - 1, rng.randrange(15))][0]
+            assert tree.within(q, radius) == [i for d, i in left if d <= radius]
+            assert tree.nearest_within(q, radius) == left[0][1]
+            costs = [float(i % 3) for i in range(len(points))]
+            inside = [i for d, i in left if d <= radius]
+            assert tree.cheapest_within(q, radius, costs) == min(inside, key=costs.__getitem__)
+
+
 def test_maximum_extent_is_the_largest_distance_within_the_bounds():
     space = se2()  # 0.7 * hypot(10, 10) + 0.3 * pi
     assert space.maximum_extent() == pytest.approx(0.7 * math.hypot(10, 10) + 0.3 * PI)
