@@ -230,6 +230,24 @@ def test_all_duplicates_do_not_split_forever():
     assert tree.within((1.0, 2.0, -PI, PI, 0.5), 0.0) == list(range(200))
 
 
+def _queries_answer_as_defined(tree, space, points, removed, rng):
+    """One random query of each kind answers as the definition over the points left."""
+    q = make_state(space, rng, points)
+    left = sorted(pair for pair in ranked(space, points, q) if pair[1] not in removed)
+    if left:
+        assert tree.nearest(q) == left[0][1]
+    assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
+    radius = left[min(len(left) - 1, rng.randrange(15))][0] if left else 1.0
+    assert tree.within(q, radius) == [i for d, i in left if d <= radius]
+    assert tree.nearest_within(q, radius) == (left[0][1] if left and left[0][0] <= radius
+                                              else -1)
+    if left:
+        costs = [float(i % 3) for i in range(len(points))]
+        inside = [i for d, i in left if d <= radius]
+        assert tree.cheapest_within(q, radius, costs) == (
+            min(inside, key=costs.__getitem__) if inside else left[0][1])
+
+
 @pytest.mark.parametrize("name", sorted(SPACES))
 def test_removed_points_are_found_by_no_query(name):
     """After ``remove``, every query answers as the definition over the points left."""
@@ -244,20 +262,7 @@ def test_removed_points_are_found_by_no_query(name):
                 tree.remove(gone)
                 removed.add(gone)
         if n % 10 == 0:
-            q = make_state(space, rng, points)
-            left = sorted(pair for pair in ranked(space, points, q) if pair[1] not in removed)
-            if left:
-                assert tree.nearest(q) == left[0][1]
-            assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
-            radius = left[min(len(left) - 1, rng.randrange(15))][0] if left else 1.0
-            assert tree.within(q, radius) == [i for d, i in left if d <= radius]
-            assert tree.nearest_within(q, radius) == (left[0][1] if left and left[0][0] <= radius
-                                                      else -1)
-            if left:
-                costs = [float(hash(i) % 3) for i in range(len(points))]
-                inside = [i for d, i in left if d <= radius]
-                assert tree.cheapest_within(q, radius, costs) == (
-                    min(inside, key=costs.__getitem__) if inside else left[0][1])
+            _queries_answer_as_defined(tree, space, points, removed, rng)
     with pytest.raises(ValueError):
         tree.remove(next(iter(removed)))
 
@@ -289,16 +294,7 @@ def test_a_walk_of_inserts_stays_shallow_and_exact(name):
                     tree.remove(gone)
                     removed.add(gone)
         if n % 25 == 0:
-            q = make_state(space, rng, points)
-            left = sorted(pair for pair in ranked(space, points, q) if pair[1] not in removed)
-            assert tree.nearest(q) == left[0][1]
-            assert tree.k_nearest(q, 6) == [i for _, i in left[:6]]
-            radius = left[min(len(left) - 1, rng.randrange(15))][0]
-            assert tree.within(q, radius) == [i for d, i in left if d <= radius]
-            assert tree.nearest_within(q, radius) == left[0][1]
-            costs = [float(i % 3) for i in range(len(points))]
-            inside = [i for d, i in left if d <= radius]
-            assert tree.cheapest_within(q, radius, costs) == min(inside, key=costs.__getitem__)
+            _queries_answer_as_defined(tree, space, points, removed, rng)
 
 
 def test_maximum_extent_is_the_largest_distance_within_the_bounds():

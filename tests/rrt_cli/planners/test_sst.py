@@ -282,17 +282,22 @@ def test_guidance_finds_a_first_path_sooner():
     solves; unguided, at most half (docs/optimal-planning.md has the medians)."""
     setup = _setup((ROOT / "benchmarks" / "problems" / "narrow-20.sw").read_text(),
                    Vehicle.SPACESHIP)
-    solved = []
-    for share in (SST_DEFAULTS.guided_share, 0.0):
-        results = [sst.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=1500),
-                             random.Random(seed), sst.SSTParams(guided_share=share))
-                   for seed in range(1, 7)]
-        for result in results:
-            if result.solved:
-                report = validate_plan(setup, format_plan(result.trajectory, result.tree))
-                assert report.valid, report.first_failure
-        solved.append(sum(result.solved for result in results))
+    solved = [_solved_and_valid(setup, sst.SSTParams(guided_share=share), range(1, 7), 1500)
+              for share in (SST_DEFAULTS.guided_share, 0.0)]
     assert solved[0] == 6 and solved[1] <= 3, solved
+
+
+def _solved_and_valid(setup, params: sst.SSTParams, seeds, iterations: int) -> int:
+    """How many of ``seeds`` solve within ``iterations``; every answer must be valid."""
+    solved = 0
+    for seed in seeds:
+        result = sst.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=iterations),
+                           random.Random(seed), params)
+        if result.solved:
+            report = validate_plan(setup, format_plan(result.trajectory, result.tree))
+            assert report.valid, report.first_failure
+            solved += 1
+    return solved
 
 
 def test_a_guided_node_is_extended_by_the_reachable_set():
@@ -322,14 +327,6 @@ def test_the_left_only_ship_takes_the_50_cell_maze():
     right turns need a near stop, which random controls seldom give)."""
     setup = _setup((ROOT / "benchmarks" / "problems" / "maze-50.sw").read_text(),
                    Vehicle.LEFT_SPACESHIP)
-    solved = []
-    for reach in (True, False):
-        results = [sst.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=6000),
-                             random.Random(seed), sst.SSTParams(guided_reach=reach))
-                   for seed in range(1, 4)]
-        for result in results:
-            if result.solved:
-                report = validate_plan(setup, format_plan(result.trajectory, result.tree))
-                assert report.valid, report.first_failure
-        solved.append(sum(result.solved for result in results))
+    solved = [_solved_and_valid(setup, sst.SSTParams(guided_reach=reach), range(1, 4), 6000)
+              for reach in (True, False)]
     assert solved == [3, 0], solved
