@@ -150,6 +150,11 @@ class DubinsSpaceInformation:
             poses += [(x, y, 0.25 * math.pi), (x, y, 1.25 * math.pi)]
         return poses
 
+    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:
+        """None: a point down the free cells says nothing of the heading to reach it
+        with, so RRT* draws no guided targets for the car."""
+        return None
+
 
 class PoseFrontier:
     """A grid frontier (:class:`~planning_core.worlds.grid_frontier.FrontierCells`) for

@@ -51,6 +51,10 @@ class FamilySpaceInformation:
         """Empty: no state of a continuous world is passable only exactly."""
         return []
 
+    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:
+        """No cells to walk in a continuous world."""
+        return None
+
     def goal_target(self, goal: Any, rng: random.Random) -> State:
         """The goal's values; the variables it does not name from a uniform sample
         (one draw per variable; none when the goal names every variable)."""
@@ -202,10 +206,6 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         control = tuple(min(max(0.0, lo), hi) for lo, hi in system.controls) + (system.kmin,)
         end = self.propagate_valid(start, control)
         return (control,) if end is not None and goal.reached(end) else None
-
-    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:
-        """No cells to walk in a continuous world."""
-        return None
 
     def stopping_point_key(self, along: Any) -> None:
         return None

@@ -123,6 +123,11 @@ class GridGeometricSpaceInformation:
         through (:meth:`GridWorld.pinch_points`)."""
         return self.world.pinch_points()
 
+    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> Any:
+        """Position -> distance to the goal along the free cells (Dijkstra, once), with
+        ``ahead(x, y, cells)``: a point that many cells down the way."""
+        return self.world.distance_along_cells(goal.point, stop)
+
 
 @dataclass(frozen=True)
 class GridControlOptions:

@@ -129,6 +129,11 @@ class GeometricSpaceInformation(Protocol):
         """States a path may pass only exactly through (a grid's corners between two
         diagonal blocked cells): RRT*'s occasional targets once it has a solution."""
 
+    def distance_along_free_space(self, goal: Goal, stop: Stop = None) -> Any:
+        """Position -> distance to the goal along free space, with ``ahead(x, y, cells)``
+        (a point that many cells down the way, or None), for RRT*'s guided targets; or
+        None (the family, the Dubins car)."""
+
 
 class ControlSpaceInformation(Protocol):
     """A system driven by controls, in a world."""

@@ -108,6 +108,26 @@ class CellDistanceToGoal:
         way: int = self._way[index]
         return d - ((x - int(x) - 0.5) * _TOWARD_X[way] + (y - int(y) - 0.5) * _TOWARD_Y[way])
 
+    def ahead(self, x: float, y: float, cells: int) -> tuple[float, float] | None:
+        """The centre of the cell ``cells`` steps down the cheapest chain from (x, y)'s
+        cell (the goal itself when the chain ends sooner); None when (x, y) has no
+        chain. A walk of at most ``cells`` steps, whatever the chain's length."""
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return None
+        index = int(y) * self.width + int(x)
+        if self.cell_distance[index] == math.inf:
+            return None
+        for _ in range(cells):
+            if index == self.goal_cell:
+                return self.goal
+            row, col = divmod(index, self.width)
+            dc, dr, _ = _STEPS[self._way[index] - 1]
+            index = (row - dr) * self.width + col - dc
+        if index == self.goal_cell:
+            return self.goal
+        row, col = divmod(index, self.width)
+        return (col + 0.5, row + 0.5)
+
     def chain_from(self, x: float, y: float) -> list[tuple[int, int]] | None:
         """The cells (column, row) of the cheapest chain from (x, y)'s cell to the goal's.
 

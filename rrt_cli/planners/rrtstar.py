@@ -33,6 +33,8 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
+from planning_core.heap import HeapEntry, heap_pop, heap_push
+from planning_core.interrupt import Stop
 from planning_core.samplers import randint, uniform
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
 from rrt_cli.planners.prmstar import star_neighbor_count
@@ -40,6 +42,8 @@ from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 State = tuple[float, ...]
+GUIDE_CELLS = 1
+"""How far down the free cells a guided target lies from its node, in cells."""
 
 
 @dataclass(frozen=True)
@@ -59,6 +63,11 @@ class RRTStarParams:
     """Until the first solution, the share of targets drawn from the tree's frontier
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT-Connect's); after it, none (the optimization draws as the paper's)."""
+    guided_targets: float = 0.5
+    """Until the first solution, the share of targets that lead the tree down the free
+    cells where the world measures them (``si.distance_along_free_space``): a point
+    ``GUIDE_CELLS`` cells down the cheapest chain of cells from the node nearest the goal
+    along them, each node once. 0: none."""
     pinch_targets: float = 0.01
     """After the first solution, the share of targets that are the world's pinch
     points where it has any (``si.pinch_points``: passable only by a node exactly
@@ -153,8 +162,13 @@ class StarSearch:
     RRT*: informed once a solution exists), None to skip the iteration."""
 
     def __init__(self, si: Any, pdef: Any, rng: random.Random, params: RRTStarParams,
-                 draw_target: Callable[[float], Optional[State]]) -> None:
-        self.si, self.goal, self.rng = si, pdef.goal, rng
+                 draw_target: Callable[[float], Optional[State]], stop: Stop = None) -> None:
+        self.si, self.goal, self.rng, self.stop = si, pdef.goal, rng, stop
+        self.guided_share = params.guided_targets
+        self.along: Any = None
+        """The distance down the free cells (:meth:`begin_guide`), or None."""
+        self.guide: list[HeapEntry] = []
+        """Nodes not yet guided from, by :attr:`along` (until the first solution)."""
         self.goal_bias, self.rewire_factor = params.goal_bias, params.rewire_factor
         self.frontier_share = params.frontier_targets
         self.frontier = si.frontier() if self.frontier_share > 0.0 else None
@@ -177,10 +191,14 @@ class StarSearch:
 
     def iterate(self) -> bool:
         """One iteration; True when the best solution became cheaper."""
-        target = self._target()
-        if target is None:
-            return False
-        steered = self._steer(target)
+        guided = self._guided() if self._guiding() else None
+        if guided is not None:
+            steered = self._steer(guided[1], guided[0])
+        else:
+            target = self._target()
+            if target is None:
+                return False
+            steered = self._steer(target)
         if steered is None:
             return False
         near, new = steered
@@ -192,6 +210,8 @@ class StarSearch:
         self.index_nodes.append(node)
         if self.frontier is not None and not self.goal_nodes:
             self.frontier.cover(new)
+        if self.along is not None and not self.goal_nodes:
+            heap_push(self.guide, HeapEntry(self.along(new[0], new[1]), node))
         changed = self._rewire(node, neighbours)
         if self.goal.reached(new):
             self.goal_nodes.append(node)
@@ -217,9 +237,41 @@ class StarSearch:
                 return pinches[randint(rng, 0, len(pinches) - 1)]
         return self.draw_target(self.best_cost)
 
-    def _steer(self, target: State) -> Optional[tuple[int, State]]:
-        """The node nearest ``target`` and the new state steered from it, or None."""
-        near = self.index_nodes[self.index.nearest(target)]
+    def _guiding(self) -> bool:
+        """Whether this iteration is a guided one (``guided_targets``, until a node is
+        in the goal region)."""
+        return (not self.goal_nodes and self.guided_share > 0.0
+                and uniform(self.rng) < self.guided_share)
+
+    def begin_guide(self) -> None:
+        """Measure the distance down the free cells where the world does (``guided_targets``
+        > 0; Dijkstra over the grid's free cells, so on the planning clock); elsewhere no
+        guided draws at all."""
+        if self.guided_share > 0.0:
+            self.along = self.si.distance_along_free_space(self.goal, self.stop)
+        if self.along is None:
+            self.guided_share = 0.0
+            return
+        states = self.tree.states
+        for node in self.index_nodes:
+            heap_push(self.guide, HeapEntry(self.along(states[node][0], states[node][1]), node))
+
+    def _guided(self) -> Optional[tuple[int, State]]:
+        """The node nearest the goal along the free cells not guided from before, and
+        the point ``GUIDE_CELLS`` cells further down them; None when every node has been."""
+        along, guide, states = self.along, self.guide, self.tree.states
+        while guide:
+            node = heap_pop(guide).order
+            ahead = along.ahead(states[node][0], states[node][1], GUIDE_CELLS)
+            if ahead is not None:
+                return node, ahead
+        return None
+
+    def _steer(self, target: State, near: int = -1) -> Optional[tuple[int, State]]:
+        """``near`` (by default the node nearest ``target``) and the new state steered
+        from it, or None."""
+        if near < 0:
+            near = self.index_nodes[self.index.nearest(target)]
         start = self.tree.states[near]
         length = self.distance(start, target)
         if length > self.max_step:
@@ -301,7 +353,7 @@ def plan(si: Any, pdef: Any, stop: StopCondition, rng: random.Random, params: RR
         raise ValueError("RRT* plans for geometric systems only")
     # Set up before the clock starts, as OMPL's setup() precedes solve(): the empty tree,
     # nearest index and frontier (microseconds) load the modules behind them.
-    search = StarSearch(si, pdef, rng, params, draw_target)
+    search = StarSearch(si, pdef, rng, params, draw_target, stop.time_is_up)
     began = time.perf_counter()
     solved = start_in_goal(si, pdef, MotionTree(pdef.start), began)
     if solved is not None:
@@ -310,6 +362,7 @@ def plan(si: Any, pdef: Any, stop: StopCondition, rng: random.Random, params: RR
         return PlanResult(PlanStatus.UNREACHABLE, si.system, (), (), (),
                           PlanStats(0, 1, time.perf_counter() - began),
                           "no chain of free cells joins the start and the goal")
+    search.begin_guide()
     objective, iterations = pdef.objective, 0
     while True:
         limit = stop.status(iterations)

@@ -100,3 +100,15 @@ def test_no_chain_from_a_blocked_cell_or_outside():
     distance = CellDistanceToGoal(WALLED, WALLED.goal)
     assert distance.chain_from(2.5, 2.5) is None
     assert distance.chain_from(-1.0, 0.5) is None
+
+
+def test_ahead_is_that_many_cells_down_the_chain():
+    """``ahead(x, y, k)``: the centre of the chain's k-th cell from (x, y)'s, the goal
+    itself when the chain is shorter; None where there is no chain."""
+    distance = CellDistanceToGoal(WALLED, WALLED.goal)
+    chain = distance.chain_from(4.5, 0.5)
+    for k in range(len(chain) - 1):
+        assert distance.ahead(4.5, 0.5, k) == (chain[k][0] + 0.5, chain[k][1] + 0.5)
+    assert distance.ahead(4.5, 0.5, len(chain) - 1) == WALLED.goal
+    assert distance.ahead(4.5, 0.5, len(chain) + 5) == WALLED.goal
+    assert distance.ahead(2.5, 2.5, 1) is None and distance.ahead(-1.0, 0.5, 1) is None
