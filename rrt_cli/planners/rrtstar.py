@@ -6,9 +6,13 @@ Each iteration draws a target (until a node is in the goal region: the goal with
 probability ``goal_bias``, else mostly a point of the tree's frontier where the world
 has one, ``frontier_targets``; after it, now and then one of the world's pinch points,
 ``pinch_targets``; otherwise a uniform state), takes
-the tree node nearest to it and steers toward it as RRT does
-(:class:`StraightLineSteering`: straight, at most ``extent_fraction`` of the space's
-extent, a blocked motion cut short ``wall_clearance`` before its first invalid state).
+the tree node nearest to it and steers toward it as RRT does. Until a node is in the
+goal region, where the world measures the distance to the goal along its free cells
+(the grid), a share of iterations (``guided_targets``) instead takes the node nearest
+the goal by it, each node once, toward the next cell down the way (a departure: on a
+big map uniform and frontier targets fill it before they reach a far goal). Steering is
+:class:`StraightLineSteering`'s: straight, at most ``extent_fraction`` of the space's
+extent, a blocked motion cut short ``wall_clearance`` before its first invalid state.
 The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
 - *choose its parent*: the one through which its cost-to-come is least and whose
   motion to it is free (tried in order of that cost until one is: OMPL's delayed
