@@ -221,7 +221,8 @@ def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_
     setup = grid_setup(parse_problem((ROOT / "benchmarks" / "problems" / "maze-50.sw")
                                      .read_text()), "point")
     found = [rrtstar.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=3000),
-                           random.Random(1), rrtstar.Params(frontier_targets=share)).solved
+                           random.Random(1),
+                           rrtstar.Params(frontier_targets=share, guided_targets=0.0)).solved
              for share in (0.9, 0.0)]
     assert found == [True, False]
 
