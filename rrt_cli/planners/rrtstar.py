@@ -68,10 +68,10 @@ class RRTStarParams:
     where the world offers one (the grid: free cells without a node beside cells with
     one, as RRT-Connect's); after it, none (the optimization draws as the paper's)."""
     guided_targets: float = 0.5
-    """Until the first solution, the share of targets that lead the tree down the free
-    cells where the world measures them (``si.distance_along_free_space``): a point
-    ``GUIDE_CELLS`` cells down the cheapest chain of cells from the node nearest the goal
-    along them, each node once. 0: none."""
+    """Until the first solution, the share of iterations that extend the node nearest
+    the goal along the free cells (``si.distance_along_free_space``, where the world
+    measures it), each node once, toward the point ``GUIDE_CELLS`` cells down its
+    cheapest chain of cells. 0: none."""
     pinch_targets: float = 0.01
     """After the first solution, the share of targets that are the world's pinch
     points where it has any (``si.pinch_points``: passable only by a node exactly
@@ -248,9 +248,9 @@ class StarSearch:
                 and uniform(self.rng) < self.guided_share)
 
     def begin_guide(self) -> None:
-        """Measure the distance down the free cells where the world does (``guided_targets``
-        > 0; Dijkstra over the grid's free cells, so on the planning clock); elsewhere no
-        guided draws at all."""
+        """Measure the distance down the free cells where the world does (with
+        ``guided_targets``; the grid's Dijkstra, so on the planning clock); elsewhere
+        no guided draws at all."""
         if self.guided_share > 0.0:
             self.along = self.si.distance_along_free_space(self.goal, self.stop)
         if self.along is None:
