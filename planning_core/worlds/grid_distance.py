@@ -112,17 +112,13 @@ class CellDistanceToGoal:
         """The centre of the cell ``cells`` steps down the cheapest chain from (x, y)'s
         cell (the goal itself when the chain ends sooner); None when (x, y) has no
         chain. A walk of at most ``cells`` steps, whatever the chain's length."""
-        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
-            return None
-        index = int(y) * self.width + int(x)
-        if self.cell_distance[index] == math.inf:
+        index = self._chain_start(x, y)
+        if index < 0:
             return None
         for _ in range(cells):
             if index == self.goal_cell:
-                return self.goal
-            row, col = divmod(index, self.width)
-            dc, dr, _ = _STEPS[self._way[index] - 1]
-            index = (row - dr) * self.width + col - dc
+                break
+            index = self._next_cell(index)
         if index == self.goal_cell:
             return self.goal
         row, col = divmod(index, self.width)
@@ -135,10 +131,8 @@ class CellDistanceToGoal:
         the polyline through their centres stays in free cells. None when (x, y)
         has no chain (blocked, outside, or cut off from the goal).
         """
-        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
-            return None
-        index = int(y) * self.width + int(x)
-        if self.cell_distance[index] == math.inf:
+        index = self._chain_start(x, y)
+        if index < 0:
             return None
         chain = []
         while True:
@@ -146,5 +140,17 @@ class CellDistanceToGoal:
             chain.append((col, row))
             if index == self.goal_cell:
                 return chain
-            dc, dr, _ = _STEPS[self._way[index] - 1]
-            index = (row - dr) * self.width + col - dc
+            index = self._next_cell(index)
+
+    def _chain_start(self, x: float, y: float) -> int:
+        """(x, y)'s cell, or -1 when it has no chain (outside, blocked, cut off)."""
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return -1
+        index = int(y) * self.width + int(x)
+        return -1 if self.cell_distance[index] == math.inf else index
+
+    def _next_cell(self, index: int) -> int:
+        """The cell after ``index`` on its chain (``index`` not the goal's)."""
+        row, col = divmod(index, self.width)
+        dc, dr, _ = _STEPS[self._way[index] - 1]
+        return (row - dr) * self.width + col - dc

@@ -244,7 +244,7 @@ class StarSearch:
     def _guiding(self) -> bool:
         """Whether this iteration is a guided one (``guided_targets``, until a node is
         in the goal region)."""
-        return (not self.goal_nodes and self.guided_share > 0.0
+        return (self.along is not None and not self.goal_nodes
                 and uniform(self.rng) < self.guided_share)
 
     def begin_guide(self) -> None:
@@ -253,12 +253,9 @@ class StarSearch:
         no guided draws at all."""
         if self.guided_share > 0.0:
             self.along = self.si.distance_along_free_space(self.goal, self.stop)
-        if self.along is None:
-            self.guided_share = 0.0
-            return
-        states = self.tree.states
-        for node in self.index_nodes:
-            heap_push(self.guide, HeapEntry(self.along(states[node][0], states[node][1]), node))
+        if self.along is not None:  # the tree is its root alone
+            root = self.tree.states[0]
+            heap_push(self.guide, HeapEntry(self.along(root[0], root[1]), 0))
 
     def _guided(self) -> Optional[tuple[int, State]]:
         """The node nearest the goal along the free cells not guided from before, and

@@ -173,13 +173,14 @@ class _Search:
         """One iteration; a goal node cheaper than the best so far, or None."""
         self.iterations += 1
         si, rng = self.si, self.rng
+        node = -1
         if self.guide_key is not None and self.best is None \
                 and uniform(rng) < self.guided_share:
             node = self.guided()
-            if node >= 0:
-                return self.expand(node) if self.guide_controls else self.extend(
-                    node, si.random_motion(self.tree.states[node], rng))
-        node = self.select(self.target())
+            if node >= 0 and self.guide_controls:
+                return self.expand(node)
+        if node < 0:
+            node = self.select(self.target())
         return self.extend(node, si.random_motion(self.tree.states[node], rng))
 
     def expand(self, node: int) -> Optional[int]:
