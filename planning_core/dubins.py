@@ -23,6 +23,13 @@ from typing import Iterator, Optional, Sequence
 TWO_PI = 2.0 * math.pi
 WORDS = ("LSL", "RSR", "LSR", "RSL", "RLR", "LRL")
 TURN = {"L": 1.0, "S": 0.0, "R": -1.0}
+WHOLE_TURN_SNAP = 1e-7
+"""An arc this close below a whole turn (radians) is no arc: rounding turns a zero angle
+into 2 pi minus a hair (a pose one quarter circle from another had a shortest path of
+a circle and a quarter)."""
+TANGENT_SLACK = 1e-14
+"""A tangent's squared length down to ``-TANGENT_SLACK * (1 + d**2)`` is zero, not
+missing: rounding, when two turning circles touch (the end then misses by ~1e-7 radii)."""
 FREE_HEADINGS = 32
 """Candidate headings of a pose whose heading is free (besides the bearing)."""
 
@@ -76,51 +83,64 @@ def advance(x: float, y: float, heading: float, turn: float, step: float,
             y - turn * r * (math.cos(after) - math.cos(heading)), after)
 
 
+def _arc(angle: float) -> float:
+    """A segment's turn in [0, 2 pi), a hair short of a whole turn being none."""
+    wrapped = mod2pi(angle)
+    return 0.0 if TWO_PI - wrapped < WHOLE_TURN_SNAP else wrapped
+
+
+def _tangent(p2: float, d: float) -> Optional[float]:
+    """A straight segment's length from its square, or None where it has none."""
+    if p2 < 0.0:
+        if p2 < -TANGENT_SLACK * (1.0 + d * d):
+            return None
+        return 0.0
+    return math.sqrt(p2)
+
+
 def _word_lengths(word: str, d: float, a: float, b: float) -> Optional[tuple[float, float, float]]:
     """The segment lengths of ``word`` in the normalised frame (the end at distance
     ``d`` along the x axis, headings ``a`` and ``b``), or None where it has none."""
     sa, sb, ca, cb = math.sin(a), math.sin(b), math.cos(a), math.cos(b)
     cab = math.cos(a - b)
     if word == "LSL":
-        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
-        if p2 < 0.0:
+        p = _tangent(2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb), d)
+        if p is None:
             return None
         turn = math.atan2(cb - ca, d + sa - sb)
-        return (mod2pi(turn - a), math.sqrt(p2), mod2pi(b - turn))
+        return (_arc(turn - a), p, _arc(b - turn))
     if word == "RSR":
-        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
-        if p2 < 0.0:
+        p = _tangent(2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa), d)
+        if p is None:
             return None
         turn = math.atan2(ca - cb, d - sa + sb)
-        return (mod2pi(a - turn), math.sqrt(p2), mod2pi(turn - b))
+        return (_arc(a - turn), p, _arc(turn - b))
     if word == "LSR":
-        p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
-        if p2 < 0.0:
+        p = _tangent(-2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb), d)
+        if p is None:
             return None
-        p = math.sqrt(p2)
         turn = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        return (mod2pi(turn - a), p, mod2pi(turn - b))
+        return (_arc(turn - a), p, _arc(turn - b))
     if word == "RSL":
-        p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
-        if p2 < 0.0:
+        p = _tangent(-2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb), d)
+        if p is None:
             return None
-        p = math.sqrt(p2)
         turn = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        return (mod2pi(a - turn), p, mod2pi(b - turn))
+        return (_arc(a - turn), p, _arc(b - turn))
     if word == "RLR":
         c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
         if abs(c) > 1.0:
             return None
         p = mod2pi(TWO_PI - math.acos(c))
-        t = mod2pi(a - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
-        return (t, p, mod2pi(a - b - t + p))
+        t = _arc(a - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
+        return (t, p, _arc(a - b - t + p))
     # LRL
     c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
     if abs(c) > 1.0:
         return None
     p = mod2pi(TWO_PI - math.acos(c))
-    t = mod2pi(-a + math.atan2(cb - ca, d + sa - sb) + p / 2.0)
-    return (t, p, mod2pi(b - a - t + p))
+    t = _arc(-a + math.atan2(cb - ca, d + sa - sb) + p / 2.0)
+    return (t, p, _arc(b - a - t + p))
 
 
 def _frame(a: Sequence[float], b: Sequence[float], radius: float) -> tuple[float, float, float]:

@@ -150,10 +150,66 @@ class DubinsSpaceInformation:
             poses += [(x, y, 0.25 * math.pi), (x, y, 1.25 * math.pi)]
         return poses
 
-    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:
-        """None: a point down the free cells says nothing of the heading to reach it
-        with, so RRT* draws no guided targets for the car."""
-        return None
+    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> "PoseGuide":
+        """Position -> distance to the goal along the free cells (the grid's Dijkstra,
+        once), with poses down the way for RRT*'s guided targets (:class:`PoseGuide`)."""
+        cells = self.world.distance_along_cells(goal.point, stop)
+        return PoseGuide(cells, self.world.printable_point(goal.point))
+
+
+class PoseGuide:
+    """The grid's distance down the free cells (:class:`~planning_core.worlds.
+    grid_distance.CellDistanceToGoal`), with guided targets that are poses.
+
+    A pose's target is where the cheapest chain of cells leaves the cell the pose is
+    heading into: the middle of the side it crosses (the corner, on a diagonal step),
+    heading across. In a corridor one cell wide, consecutive targets are joined by
+    a straight line or a quarter circle of radius half a cell inside one cell: a car
+    of radius 0.5 or less drives a maze from target to target. The goal's cell's
+    target is the goal, heading from the pose to it."""
+
+    NUDGE = 1e-9
+    """How far ahead along its heading a pose's cell is looked up, so that a pose on
+    a cell's side belongs to the cell it is entering."""
+    RUN_CELLS = 64
+    """How far a target may lie down a straight run of the chain, in cells."""
+
+    def __init__(self, cells: Any, goal: tuple[float, float]) -> None:
+        self.cells = cells
+        self.goal = goal
+        self.unreachable = cells.unreachable
+
+    def __call__(self, x: float, y: float) -> float:
+        distance: float = self.cells(x, y)
+        return distance
+
+    def ahead_of(self, state: Sequence[float], steps: int) -> Optional[tuple[float, float, float]]:
+        """The pose ``steps`` sides down the chain from ``state``'s cell, or further
+        while the chain goes straight on (at most ``RUN_CELLS`` cells); in the goal's
+        cell the goal; None without a chain, or at the goal."""
+        x, y = state[0], state[1]
+        if len(state) > 2:
+            x, y = x + self.NUDGE * math.cos(state[2]), y + self.NUDGE * math.sin(state[2])
+        chain = self.cells.chain_ahead(x, y, max(steps, self.RUN_CELLS))
+        if chain is None:
+            return None
+        if len(chain) == 1:  # the goal's cell
+            gx, gy = self.goal
+            if (gx, gy) == (state[0], state[1]):
+                return None
+            return (gx, gy, mod2pi(math.atan2(gy - state[1], gx - state[0])))
+        end = min(steps, len(chain) - 1)
+        step = _step(chain, end)
+        while end + 1 < len(chain) and _step(chain, end + 1) == step:
+            end += 1
+        (before_col, before_row), (col, row) = chain[end - 1], chain[end]
+        return (0.5 * (col + before_col) + 0.5, 0.5 * (row + before_row) + 0.5,
+                mod2pi(math.atan2(step[1], step[0])))
+
+
+def _step(chain: list[tuple[int, int]], k: int) -> tuple[int, int]:
+    """The step (columns, rows) from ``chain[k - 1]`` to ``chain[k]``."""
+    return (chain[k][0] - chain[k - 1][0], chain[k][1] - chain[k - 1][1])
 
 
 class PoseFrontier:

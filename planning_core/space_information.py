@@ -130,9 +130,9 @@ class GeometricSpaceInformation(Protocol):
         diagonal blocked cells): RRT*'s occasional targets once it has a solution."""
 
     def distance_along_free_space(self, goal: Goal, stop: Stop = None) -> Any:
-        """Position -> distance to the goal along free space, with ``ahead(x, y, cells)``
-        (a point that many cells down the way, or None), for RRT*'s guided targets; or
-        None (the family, the Dubins car)."""
+        """Position -> distance to the goal along free space, with ``ahead_of(state,
+        cells)`` (a state that many cells down the way, or None), for RRT*'s guided
+        targets; or None (the family)."""
 
 
 class ControlSpaceInformation(Protocol):

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from array import array
-from typing import Final
+from typing import Final, Sequence
 
 from planning_core.heap import HeapEntry, heap_pop, heap_push
 from planning_core.interrupt import POLL_EVERY, Stop, check
@@ -112,17 +112,32 @@ class CellDistanceToGoal:
         """The centre of the cell ``cells`` steps down the cheapest chain from (x, y)'s
         cell (the goal itself when the chain ends sooner); None when (x, y) has no
         chain. A walk of at most ``cells`` steps, whatever the chain's length."""
+        chain = self.chain_ahead(x, y, cells)
+        if chain is None:
+            return None
+        col, row = chain[-1]
+        if row * self.width + col == self.goal_cell:
+            return self.goal
+        return (col + 0.5, row + 0.5)
+
+    def ahead_of(self, state: Sequence[float], cells: int) -> tuple[float, float] | None:
+        """:meth:`ahead` of a state's position (RRT*'s guided target)."""
+        return self.ahead(state[0], state[1], cells)
+
+    def chain_ahead(self, x: float, y: float, cells: int) -> list[tuple[int, int]] | None:
+        """The first ``cells + 1`` cells (column, row) of :meth:`chain_from`'s chain, or
+        fewer when it reaches the goal's cell sooner; a walk of at most ``cells`` steps."""
         index = self._chain_start(x, y)
         if index < 0:
             return None
-        for _ in range(cells):
+        chain = []
+        for _ in range(cells + 1):
+            row, col = divmod(index, self.width)
+            chain.append((col, row))
             if index == self.goal_cell:
                 break
             index = self._next_cell(index)
-        if index == self.goal_cell:
-            return self.goal
-        row, col = divmod(index, self.width)
-        return (col + 0.5, row + 0.5)
+        return chain
 
     def chain_from(self, x: float, y: float) -> list[tuple[int, int]] | None:
         """The cells (column, row) of the cheapest chain from (x, y)'s cell to the goal's.

@@ -263,7 +263,7 @@ class StarSearch:
         along, guide, states = self.along, self.guide, self.tree.states
         while guide:
             node = heap_pop(guide).order
-            ahead = along.ahead(states[node][0], states[node][1], GUIDE_CELLS)
+            ahead = along.ahead_of(states[node], GUIDE_CELLS)
             if ahead is not None:
                 return node, ahead
         return None

@@ -99,3 +99,24 @@ def test_a_free_heading_is_at_least_as_short_as_any_candidate():
     assert shortest((0, 0), (3, 4, math.atan2(4, 3)), 1.0).length == pytest.approx(5.0)
     to_free = shortest((0, 0, 0.3), (5, 1), 0.5)
     assert math.dist(to_free.end()[:2], (5, 1)) < 1e-9
+
+
+@pytest.mark.parametrize("radius", RADII)
+def test_a_quarter_circle_or_a_line_ahead_is_its_own_shortest_path(radius):
+    """Poses one quarter circle apart (left or right) or straight ahead: the shortest
+    path is that arc or line alone. Rounding once made a quarter circle's shortest
+    path a whole circle and a quarter (a zero turn wrapped to 2 pi, a touching
+    tangent's square a hair below zero), which left the cell a maze's corner allows."""
+    for k in range(4):
+        heading = k * math.pi / 2
+        x, y = 3.0 + k, 0.5 * k  # exact halves, as the grid's guided targets
+        ahead = (math.cos(heading), math.sin(heading))
+        left = (-ahead[1], ahead[0])
+        for side in (1.0, -1.0):
+            end = (x + radius * (ahead[0] + side * left[0]), y + radius * (ahead[1] + side * left[1]),
+                   dubins.mod2pi(heading + side * math.pi / 2))
+            path = shortest((x, y, heading), end, radius)
+            assert path.length == pytest.approx(radius * math.pi / 2, rel=1e-12)
+            assert _gap(path.end(), end) < 1e-9
+        line = shortest((x, y, heading), (x + 3 * ahead[0], y + 3 * ahead[1], heading), radius)
+        assert line.length == pytest.approx(3.0, rel=1e-12)

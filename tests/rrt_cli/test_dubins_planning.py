@@ -1,6 +1,7 @@
 """The Dubins car (``-dubins [-radius R]``): every answer valid under the validator's
 own checks with the turning check, and as a point path; reproducible; the flags'
-usage errors; RRT-Connect's reversed goal tree; the nearest index exact."""
+usage errors; RRT-Connect's reversed goal tree; the nearest index exact; RRT*'s guided
+targets drive a maze."""
 
 import math
 import random
@@ -8,11 +9,14 @@ import random
 import pytest
 
 from planning_core.nearest.directed import DubinsNearest
+from planning_core.plan_text import format_plan
 from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup
 from planning_core.systems.dubins import DubinsOptions
 from planning_core.vehicles import Vehicle
-from tests.conftest import COURSE_PROBLEMS, plan_in_process, run_planner
+from rrt_cli.planners import informed, rrtstar
+from rrt_cli.planners.base import StopCondition
+from tests.conftest import COURSE_PROBLEMS, ROOT, plan_in_process, run_planner
 from validator.checks import validate_output, validate_plan
 
 CASES = [(path, planner, "0.5") for path in COURSE_PROBLEMS
@@ -253,3 +257,51 @@ def test_pinch_poses_pass_the_pinch_along_its_free_diagonal():
         assert si.first_hit((x, y, heading), (x + dx, y + dy, heading)) is None
         beside = (x - dx + 0.01, y - dy, heading), (x + dx + 0.01, y + dy, heading)
         assert si.first_hit(*beside) is not None
+
+
+MAZES = ROOT / "benchmarks" / "problems"
+
+
+@pytest.mark.parametrize("name,radius", [("maze-50", 0.5), ("maze-20", 0.25),
+                                         ("random-d35-50", 0.5), ("space-3", 0.5)])
+def test_the_guided_targets_join_start_to_goal_by_free_curves(name, radius):
+    """Each guided target from the last, from the start: every Dubins motion between
+    them is free and the walk ends in the goal region, one target a straight run of
+    the chain of cells (a maze's corner is a quarter circle inside its cell)."""
+    path = MAZES / f"{name}.sw" if name != "space-3" else next(
+        p for p in COURSE_PROBLEMS if p.stem == name)
+    setup = grid_setup(parse_problem(path.read_text()), Vehicle.DUBINS, DubinsOptions(radius))
+    si, pdef = setup.si, setup.pdef
+    guide = si.distance_along_free_space(pdef.goal)
+    chain = guide.cells.chain_from(*pdef.start)
+    state, targets = pdef.start, 0
+    while not pdef.goal.reached(state):
+        target = guide.ahead_of(state, 1)
+        assert si.first_hit(state, target) is None, (state, target)
+        assert guide(target[0], target[1]) < guide(state[0], state[1])
+        state, targets = target, targets + 1
+        assert targets <= len(chain)
+    turns = sum(1 for a, b, c in zip(chain, chain[1:], chain[2:])
+                if (b[0] - a[0], b[1] - a[1]) != (c[0] - b[0], c[1] - b[1]))
+    assert targets <= turns + 2
+
+
+@pytest.mark.parametrize("module", [rrtstar, pytest.param(informed, marks=pytest.mark.slow)],
+                         ids=["rrtstar", "informed"])  # alike until the first solution
+def test_guided_targets_take_the_car_through_a_maze(module):
+    """maze-50, seeds 1-2, 700 iterations: RRT* and Informed RRT* with guided targets
+    reach the goal with a valid answer; with none, neither does (0/2 in 30 s before)."""
+    text = (MAZES / "maze-50.sw").read_text()
+    setup = grid_setup(parse_problem(text), Vehicle.DUBINS)
+    solved = []
+    for share in (module.Params().guided_targets, 0.0):
+        results = [module.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=700),
+                                random.Random(seed), module.Params(guided_targets=share))
+                   for seed in (1, 2)]
+        solved.append(sum(result.solved for result in results))
+        for result in results:
+            if result.solved:
+                report = validate_plan(setup, format_plan(result.trajectory, result.tree),
+                                       strict=True)
+                assert report.valid and _turning(report).passed, report.first_failure
+    assert solved == [2, 0], solved
