@@ -101,8 +101,14 @@ def _tangent(p2: float, d: float) -> Optional[float]:
 def _word_lengths(word: str, d: float, a: float, b: float) -> Optional[tuple[float, float, float]]:
     """The segment lengths of ``word`` in the normalised frame (the end at distance
     ``d`` along the x axis, headings ``a`` and ``b``), or None where it has none."""
-    sa, sb, ca, cb = math.sin(a), math.sin(b), math.cos(a), math.cos(b)
-    cab = math.cos(a - b)
+    return _lengths(word, d, a, b, math.sin(a), math.sin(b), math.cos(a), math.cos(b),
+                    math.cos(a - b))
+
+
+def _lengths(word: str, d: float, a: float, b: float, sa: float, sb: float, ca: float,
+             cb: float, cab: float) -> Optional[tuple[float, float, float]]:
+    """:func:`_word_lengths` given the frame's sines and cosines (computed once for
+    all six words)."""
     if word == "LSL":
         p = _tangent(2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb), d)
         if p is None:
@@ -169,10 +175,11 @@ def all_words(a: Sequence[float], b: Sequence[float], radius: float) -> list[Dub
 def shortest_between_poses(a: Sequence[float], b: Sequence[float],
                            radius: float) -> DubinsPath:
     """The shortest of the six words (ties: the first in :data:`WORDS`)."""
-    frame = _frame(a, b, radius)
+    d, ha, hb = _frame(a, b, radius)
+    sa, sb, ca, cb, cab = math.sin(ha), math.sin(hb), math.cos(ha), math.cos(hb), math.cos(ha - hb)
     best, best_word, best_total = None, "", math.inf
     for word in WORDS:
-        lengths = _word_lengths(word, *frame)
+        lengths = _lengths(word, d, ha, hb, sa, sb, ca, cb, cab)
         if lengths is not None:
             total = lengths[0] + lengths[1] + lengths[2]
             if total < best_total:
@@ -202,6 +209,28 @@ def shortest(a: Sequence[float], b: Sequence[float], radius: float) -> DubinsPat
             best = path
     assert best is not None
     return best
+
+
+def sample_positions(path: DubinsPath, pieces: int) -> Iterator[tuple[float, float]]:
+    """The positions ``path.length * k / pieces`` along ``path``, k = 1 .. pieces - 1
+    (the inner samples of a curve cut into ``pieces``), lazily: a check stops early.
+    Each is :meth:`DubinsPath.pose_at`'s, bit for bit, from its segment's start
+    (found once) instead of from the path's."""
+    r, length, lengths, word = path.radius, path.length, path.lengths, path.word
+    starts = [path.start]
+    for j in range(3):
+        x, y, heading = starts[j]
+        starts.append(advance(x, y, heading, TURN[word[j]], lengths[j], r))
+    for k in range(1, pieces):
+        left = max(0.0, min(length * k / pieces, length)) / r
+        x, y = starts[3][0], starts[3][1]
+        for j in range(3):
+            if left <= lengths[j]:
+                x0, y0, heading = starts[j]
+                x, y, _ = advance(x0, y0, heading, TURN[word[j]], left, r)
+                break
+            left -= lengths[j]
+        yield (x, y)
 
 
 def sample_count(length: float, step: float) -> int:

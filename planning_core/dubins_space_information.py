@@ -18,14 +18,17 @@ from __future__ import annotations
 
 import math
 import random
+from itertools import chain
 from typing import Any, Callable, Optional, Sequence
 
-from planning_core.dubins import mod2pi, sample_count
+from planning_core.dubins import mod2pi, sample_count, sample_positions
 from planning_core.interrupt import Stop
 from planning_core.samplers import uniform
 from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
 
 TWO_PI = 2.0 * math.pi
+CURVES_KEPT = 4096
+"""Motions :meth:`DubinsSpaceInformation.curve` remembers before it forgets them all."""
 
 
 class CurveHit:
@@ -58,6 +61,20 @@ class DubinsSpaceInformation:
         self.wall_clearance = grid.wall_clearance
         """A curve cut short stops as far before the wall as the point's segment."""
         self.printable = world.point_strictly_inside
+        self.curves: dict[tuple[Any, Any], Any] = {}
+        """Motions measured lately (:meth:`curve`)."""
+
+    def curve(self, a: Sequence[float], b: Sequence[float]) -> Any:
+        """The car's motion a -> b (:meth:`DubinsCar.curve`), remembered: RRT* measures
+        a motion and then checks it, and its nearest index measures what it then
+        measures again (the last ``CURVES_KEPT`` pairs, forgotten all at once)."""
+        key = (a, b)
+        curve = self.curves.get(key)
+        if curve is None:
+            if len(self.curves) >= CURVES_KEPT:
+                self.curves.clear()
+            curve = self.curves[key] = self.system.curve(a, b)
+        return curve
 
     @property
     def space(self) -> Any:
@@ -72,30 +89,31 @@ class DubinsSpaceInformation:
 
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The length of the shortest Dubins path a -> b (directed)."""
-        length: float = self.system.curve(a, b).length
+        length: float = self.curve(a, b).length
         return length
 
     def interpolate(self, a: Sequence[float], b: Sequence[float],
                     t: float) -> tuple[float, float, float]:
         """The pose at fraction ``t`` of the Dubins path a -> b."""
-        curve = self.system.curve(a, b)
+        curve = self.curve(a, b)
         return curve.pose_at(curve.length * t)
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
         """The first chord of the curve a -> b that enters a blocked cell, or whose
         end does not print strictly inside the map; None when the curve is free."""
-        curve = self.system.curve(a, b)
-        points = self.system.curve_positions(a, b, curve)
-        walk, inside = self.world.first_blocked_cell_on_segment, self.world.point_strictly_inside
-        x0, y0 = next(points)
+        curve = self.curve(a, b)
         pieces = sample_count(curve.length, SAMPLE_STEP)
-        for k, (x1, y1) in enumerate(points):
-            hit = walk(x0, y0, x1, y1)
+        world = self.world
+        x0, y0 = a[0], a[1]
+        k = 0
+        # The curve's inner samples, then b exactly, as printed.
+        for x1, y1 in chain(sample_positions(curve, pieces), ((b[0], b[1]),)):
+            hit = world.first_blocked_cell_on_segment(x0, y0, x1, y1)
             if hit is not None:
                 return CurveHit(max((k + hit.fraction) / pieces, 1e-12))
-            if not inside(x1, y1):
+            if not world.point_strictly_inside(x1, y1):
                 return CurveHit((k + 1) / pieces)
-            x0, y0 = x1, y1
+            x0, y0, k = x1, y1, k + 1
         return None
 
     def _heading(self, rng: random.Random) -> float:

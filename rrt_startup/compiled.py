@@ -47,6 +47,8 @@ MODULES = (
     "planning_core.heap",
     "planning_core.nearest.index",
     "planning_core.nearest.directed",
+    "planning_core.dubins",
+    "planning_core.dubins_space_information",
     "planning_core.goal",
     "planning_core.projections",
     "rrt_cli.planners.base",

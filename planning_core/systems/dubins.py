@@ -83,11 +83,8 @@ class DubinsCar:
         ``SAMPLE_STEP`` apart along it: ``a``'s first, ``b``'s last, exactly (the
         chords the planners check are the ones printed). Lazy: a check stops early."""
         curve = self.curve(a, b) if path is None else path
-        n = dubins.sample_count(curve.length, SAMPLE_STEP)
         yield (a[0], a[1])
-        for k in range(1, n):
-            x, y, _ = curve.pose_at(curve.length * k / n)
-            yield (x, y)
+        yield from dubins.sample_positions(curve, dubins.sample_count(curve.length, SAMPLE_STEP))
         yield (b[0], b[1])
 
     def curve_points(self, a: Sequence[float], b: Sequence[float]) -> list[tuple[float, float]]:

@@ -120,3 +120,15 @@ def test_a_quarter_circle_or_a_line_ahead_is_its_own_shortest_path(radius):
             assert _gap(path.end(), end) < 1e-9
         line = shortest((x, y, heading), (x + 3 * ahead[0], y + 3 * ahead[1], heading), radius)
         assert line.length == pytest.approx(3.0, rel=1e-12)
+
+
+def test_the_samples_are_pose_at_bit_for_bit():
+    """sample_positions (what the planners check and print) against pose_at at the
+    same fractions, exactly; ends of segments included."""
+    for a, b, radius in _poses(7, 300):
+        path = shortest(a, b, radius)
+        pieces = dubins.sample_count(path.length, 0.05)
+        expected = [path.pose_at(path.length * k / pieces)[:2] for k in range(1, pieces)]
+        assert list(dubins.sample_positions(path, pieces)) == expected
+    quarter = shortest((1.0, 0.5, 0.0), (1.5, 1.0, math.pi / 2), 0.5)
+    assert list(dubins.sample_positions(quarter, 2)) == [quarter.pose_at(quarter.length / 2)[:2]]
