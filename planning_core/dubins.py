@@ -89,61 +89,67 @@ def _arc(angle: float) -> float:
     return 0.0 if TWO_PI - wrapped < WHOLE_TURN_SNAP else wrapped
 
 
-def _tangent(p2: float, d: float) -> Optional[float]:
-    """A straight segment's length from its square, or None where it has none."""
+def _tangent(p2: float, d: float) -> float:
+    """A straight segment's length from its square, or -1 where it has none."""
     if p2 < 0.0:
         if p2 < -TANGENT_SLACK * (1.0 + d * d):
-            return None
+            return -1.0
         return 0.0
     return math.sqrt(p2)
+
+
+_NONE = (-1.0, 0.0, 0.0)
+""":func:`_lengths`' answer for a word without a path (plain floats, so that the
+compiled build passes three lengths without making a tuple object)."""
 
 
 def _word_lengths(word: str, d: float, a: float, b: float) -> Optional[tuple[float, float, float]]:
     """The segment lengths of ``word`` in the normalised frame (the end at distance
     ``d`` along the x axis, headings ``a`` and ``b``), or None where it has none."""
-    return _lengths(word, d, a, b, math.sin(a), math.sin(b), math.cos(a), math.cos(b),
-                    math.cos(a - b))
+    lengths = _lengths(WORDS.index(word), d, a, b, math.sin(a), math.sin(b), math.cos(a),
+                       math.cos(b), math.cos(a - b))
+    return None if lengths[0] < 0.0 else lengths
 
 
-def _lengths(word: str, d: float, a: float, b: float, sa: float, sb: float, ca: float,
-             cb: float, cab: float) -> Optional[tuple[float, float, float]]:
-    """:func:`_word_lengths` given the frame's sines and cosines (computed once for
-    all six words)."""
-    if word == "LSL":
+def _lengths(word: int, d: float, a: float, b: float, sa: float, sb: float, ca: float,
+             cb: float, cab: float) -> tuple[float, float, float]:
+    """:func:`_word_lengths` of ``WORDS[word]`` given the frame's sines and cosines
+    (computed once for all six words); :data:`_NONE` where it has none."""
+    if word == 0:  # LSL
         p = _tangent(2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb), d)
-        if p is None:
-            return None
+        if p < 0.0:
+            return _NONE
         turn = math.atan2(cb - ca, d + sa - sb)
         return (_arc(turn - a), p, _arc(b - turn))
-    if word == "RSR":
+    if word == 1:  # RSR
         p = _tangent(2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa), d)
-        if p is None:
-            return None
+        if p < 0.0:
+            return _NONE
         turn = math.atan2(ca - cb, d - sa + sb)
         return (_arc(a - turn), p, _arc(turn - b))
-    if word == "LSR":
+    if word == 2:  # LSR
         p = _tangent(-2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb), d)
-        if p is None:
-            return None
+        if p < 0.0:
+            return _NONE
         turn = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
         return (_arc(turn - a), p, _arc(turn - b))
-    if word == "RSL":
+    if word == 3:  # RSL
         p = _tangent(-2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb), d)
-        if p is None:
-            return None
+        if p < 0.0:
+            return _NONE
         turn = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
         return (_arc(a - turn), p, _arc(b - turn))
-    if word == "RLR":
+    if word == 4:  # RLR
         c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
         if abs(c) > 1.0:
-            return None
+            return _NONE
         p = mod2pi(TWO_PI - math.acos(c))
         t = _arc(a - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
         return (t, p, _arc(a - b - t + p))
     # LRL
     c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
     if abs(c) > 1.0:
-        return None
+        return _NONE
     p = mod2pi(TWO_PI - math.acos(c))
     t = _arc(-a + math.atan2(cb - ca, d + sa - sb) + p / 2.0)
     return (t, p, _arc(b - a - t + p))
@@ -177,15 +183,15 @@ def shortest_between_poses(a: Sequence[float], b: Sequence[float],
     """The shortest of the six words (ties: the first in :data:`WORDS`)."""
     d, ha, hb = _frame(a, b, radius)
     sa, sb, ca, cb, cab = math.sin(ha), math.sin(hb), math.cos(ha), math.cos(hb), math.cos(ha - hb)
-    best, best_word, best_total = None, "", math.inf
-    for word in WORDS:
+    best, best_word, best_total = _NONE, -1, math.inf
+    for word in range(6):
         lengths = _lengths(word, d, ha, hb, sa, sb, ca, cb, cab)
-        if lengths is not None:
+        if lengths[0] >= 0.0:
             total = lengths[0] + lengths[1] + lengths[2]
             if total < best_total:
                 best, best_word, best_total = lengths, word, total
-    assert best is not None  # LSL or RSR always exists (Dubins 1957)
-    return DubinsPath((a[0], a[1], a[2]), best_word, best, radius)
+    assert best_word >= 0  # LSL or RSR always exists (Dubins 1957)
+    return DubinsPath((a[0], a[1], a[2]), WORDS[best_word], best, radius)
 
 
 def _candidate_headings(bearing: float) -> Iterator[float]:

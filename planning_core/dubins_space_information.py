@@ -31,12 +31,28 @@ CURVES_KEPT = 4096
 """Motions :meth:`DubinsSpaceInformation.curve` remembers before it forgets them all."""
 
 
-class CurveHit:
-    """Where a curve first meets a blocked cell or the map's edge."""
+PROBE_PIECES = 8
+"""A curve cut into this many chords or more is probed first (:meth:`DubinsSpaceInformation.
+first_hit`)."""
 
-    def __init__(self, fraction: float) -> None:
-        self.fraction = fraction
-        """Of the curve's length, in (0, 1]."""
+
+class CurveHit:
+    """Where a curve first meets a blocked cell or the map's edge: :attr:`fraction` of
+    its length, in (0, 1], worked out when first asked when a probe found the hit (a
+    check that asks only whether there is one never walks the curve)."""
+
+    def __init__(self, fraction: float, si: Any = None, a: Any = None, b: Any = None) -> None:
+        self.known = fraction
+        """The fraction, or -1 until it is asked for."""
+        self.si, self.a, self.b = si, a, b
+
+    @property
+    def fraction(self) -> float:
+        if self.known < 0.0:
+            hit = self.si.walk(self.a, self.b)
+            assert hit is not None  # the probe's sample is in a blocked cell
+            self.known = hit.fraction
+        return self.known
 
 
 class DubinsSpaceInformation:
@@ -100,7 +116,23 @@ class DubinsSpaceInformation:
 
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
         """The first chord of the curve a -> b that enters a blocked cell, or whose
-        end does not print strictly inside the map; None when the curve is free."""
+        end does not print strictly inside the map; None when the curve is free.
+        A long curve is probed first at its middle and quarters: a sample there in
+        the open inside of a blocked cell, or not strictly inside the map, means a
+        hit, whose place :meth:`walk` finds only if it is asked for."""
+        curve = self.curve(a, b)
+        pieces = sample_count(curve.length, SAMPLE_STEP)
+        if pieces >= PROBE_PIECES:
+            length, world = curve.length, self.world
+            for k in (pieces // 2, pieces // 4, 3 * pieces // 4):
+                x, y, _ = curve.pose_at(length * k / pieces)  # sample k, bit for bit
+                if not world.point_strictly_inside(x, y) or (
+                        x != int(x) and y != int(y) and not world.point_free(x, y)):
+                    return CurveHit(-1.0, self, a, b)
+        return self.walk(a, b)
+
+    def walk(self, a: Sequence[float], b: Sequence[float]) -> Optional[CurveHit]:
+        """:meth:`first_hit` by walking the curve's chords from ``a``."""
         curve = self.curve(a, b)
         pieces = sample_count(curve.length, SAMPLE_STEP)
         world = self.world

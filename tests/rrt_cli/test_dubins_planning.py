@@ -305,3 +305,21 @@ def test_guided_targets_take_the_car_through_a_maze(module):
                                        strict=True)
                 assert report.valid and _turning(report).passed, report.first_failure
     assert solved == [2, 0], solved
+
+
+def test_a_probed_hit_is_the_walked_hit():
+    """first_hit (probing a long curve's middle and quarters first) against walking
+    every chord: the same curves blocked, and the same first fraction when asked, on
+    maze-20 for poses in free cells and anywhere."""
+    setup = grid_setup(parse_problem((MAZES / "maze-20.sw").read_text()), Vehicle.DUBINS)
+    si, rng = setup.si, random.Random(5)
+    draw = si.free_sampler(rng)
+    probed = 0
+    for _ in range(600):
+        a, b = draw(), draw() if rng.random() < 0.8 else si.sample_target(rng)
+        hit, walked = si.first_hit(a, b), si.walk(a, b)
+        assert (hit is None) == (walked is None)
+        if hit is not None:
+            probed += hit.known < 0.0
+            assert hit.fraction == walked.fraction
+    assert probed > 100
