@@ -9,8 +9,9 @@ has one, ``frontier_targets``; after it, now and then one of the world's pinch p
 the tree node nearest to it and steers toward it as RRT does. Until a node is in the
 goal region, where the world measures the distance to the goal along its free cells
 (the grid), a share of iterations (``guided_targets``) instead takes the node nearest
-the goal by it, each node once, toward the next cell down the way (a departure: on a
-big map uniform and frontier targets fill it before they reach a far goal). Steering is
+the goal by it, each node once, toward the next cell down the way (for the Dubins car,
+a pose where the way leaves a cell, further down a straight run; a departure: on a big map uniform and
+frontier targets fill it before they reach a far goal). Steering is
 :class:`StraightLineSteering`'s: straight, at most ``extent_fraction`` of the space's
 extent, a blocked motion cut short ``wall_clearance`` before its first invalid state.
 The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
@@ -70,8 +71,9 @@ class RRTStarParams:
     guided_targets: float = 0.5
     """Until the first solution, the share of iterations that extend the node nearest
     the goal along the free cells (``si.distance_along_free_space``, where the world
-    measures it), each node once, toward the point ``GUIDE_CELLS`` cells down its
-    cheapest chain of cells. 0: none."""
+    measures it), each node once, toward the state ``GUIDE_CELLS`` cells down its
+    cheapest chain of cells (``ahead_of``: the point's cell centre; the Dubins car's pose
+    where the chain leaves a cell, at the end of its straight run). 0: none."""
     pinch_targets: float = 0.01
     """After the first solution, the share of targets that are the world's pinch
     points where it has any (``si.pinch_points``: passable only by a node exactly
