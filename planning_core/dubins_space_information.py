@@ -227,7 +227,6 @@ class PoseGuide:
     def __init__(self, cells: Any, goal: tuple[float, float]) -> None:
         self.cells = cells
         self.goal = goal
-        self.unreachable = cells.unreachable
 
     def __call__(self, x: float, y: float) -> float:
         distance: float = self.cells(x, y)

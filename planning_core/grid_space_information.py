@@ -125,7 +125,7 @@ class GridGeometricSpaceInformation:
 
     def distance_along_free_space(self, goal: Any, stop: Stop = None) -> Any:
         """Position -> distance to the goal along the free cells (Dijkstra, once), with
-        ``ahead(x, y, cells)``: a point that many cells down the way."""
+        ``ahead_of(state, cells)``: a point that many cells down the way."""
         return self.world.distance_along_cells(goal.point, stop)
 
 
