@@ -76,6 +76,8 @@ class DubinsSpaceInformation:
         """Uniform over the free cells, as the point vehicle's."""
         self.wall_clearance = grid.wall_clearance
         """A curve cut short stops as far before the wall as the point's segment."""
+        self.rrt_guided_targets = 0.5
+        """Uniform targets rarely lead a car through a maze (docs/dubins.md)."""
         self.printable = world.point_strictly_inside
         self.curves: dict[tuple[Any, Any], Any] = {}
         """Motions measured lately (:meth:`curve`)."""

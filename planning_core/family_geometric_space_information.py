@@ -62,6 +62,7 @@ class FamilyGeometricSpaceInformation(FamilySpaceInformation):
         system = self.system
         self.wall_clearance = system.check
         """A motion cut short stops one check step before its first invalid sample."""
+        self.rrt_guided_targets = 0.0
         metric = self.kernels["metric"]
         # The metric's own methods (native calls in the compiled build), no wrapper.
         self.distance, self.interpolate = metric.distance, metric.interpolate

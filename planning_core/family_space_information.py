@@ -118,6 +118,7 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         system = self.system
         self.options = options
         self.controls_per_extension = options.controls_per_extension
+        self.rrt_guided_targets = 0.0
         extent = self.space.maximum_extent()
         self.selection_radius = options.selection_share * extent
         self.pruning_radius = options.pruning_share * extent

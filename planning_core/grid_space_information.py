@@ -49,6 +49,8 @@ class GridGeometricSpaceInformation:
         """Uniform over the free cells (on mazes most map targets lie in walls)."""
         self.wall_clearance = 1.0
         """A segment cut short stops a map unit before the wall (docs/parameter-history.md)."""
+        self.rrt_guided_targets = 0.0
+        """RRT is the course's reference loop: uniform targets."""
         self.printable = world.point_strictly_inside
 
     @property
@@ -192,6 +194,7 @@ class GridControlSpaceInformation:
         self.world = world
         self.options = options
         self.controls_per_extension = options.controls_per_extension
+        self.rrt_guided_targets = 0.0
         self.selection_radius = options.selection_radius
         self._state_metric: Any = None  # made on first use (SST's): start-up
         self.pruning_radius = options.pruning_radius

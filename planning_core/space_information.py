@@ -78,6 +78,9 @@ class GeometricSpaceInformation(Protocol):
     wall_clearance: float
     """How far a motion cut short stops before its first invalid state (the grid:
     a map unit; the family: one check step)."""
+    rrt_guided_targets: float
+    """RRT's share of guided iterations by default (``RRTParams.guided_targets``): the
+    Dubins car's 0.5, 0 elsewhere (the point's RRT is the course's reference loop)."""
     space: Any
     """The state space (``spaces.StateSpace``): bounds, angles and metric groups, whose
     distance :meth:`distance` is never below (informed sampling's ellipsoid)."""
@@ -143,6 +146,8 @@ class ControlSpaceInformation(Protocol):
     controls_per_extension: int
     """Random controls RRT tries per extension, the valid one ending closest wins
     (OMPL's directed control sampler: the grid's ships 10, the family 1)."""
+    rrt_guided_targets: float
+    """RRT's share of guided iterations by default (``RRTParams.guided_targets``): 0."""
 
     selection_radius: float
     """SST's default selection radius, in :meth:`distance`'s units (the grid's ships:

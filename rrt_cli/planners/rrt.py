@@ -8,7 +8,10 @@ by position on the grid, by the metric in the family) and extends that node
 toward it with the system's steering (straight lines for a geometric system, the
 best of random controls for a kinodynamic one). The search ends at the first
 node in the goal region, like OMPL's RRT with its default "stop at first
-solution".
+solution". Where the space information asks for it (the Dubins car, whose uniform
+targets rarely lead it through a maze), a share of iterations is guided instead:
+the node nearest the goal along the free cells extends toward a state down the way
+(:mod:`rrt_cli.planners.guide`).
 """
 
 from __future__ import annotations
@@ -48,6 +51,11 @@ class RRTParams:
     invalid state (a node pressed against a wall fails every extension toward the
     targets behind it; docs/parameter-history.md); None: the space information's
     (the grid: a map unit; the family: one check step)."""
+    guided_targets: Optional[float] = None
+    """The share of iterations that extend the node nearest the goal along the free
+    cells toward a state down the way (:mod:`rrt_cli.planners.guide`); None: the space
+    information's ``rrt_guided_targets`` (the Dubins car's 0.5; 0 elsewhere: the point's
+    RRT is the course's reference loop)."""
 
 
 @guarded
@@ -55,14 +63,16 @@ def solve(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
     began = time.perf_counter()
     steering = make_steering(si, params)
-    return grow(si, pdef, stop, rng, steering.extend, params.goal_bias, began)
+    guided = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
+    return grow(si, pdef, stop, rng, steering.extend, params.goal_bias, began, guided)
 
 
 def grow(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
-         extend: Callable, goal_bias: float, began: float) -> PlanResult:
+         extend: Callable, goal_bias: float, began: float,
+         guided_targets: float = 0.0) -> PlanResult:
     """RRT's loop with ``extend(state, target, rng) -> (state, control) | None`` as
     its steering, until a node reaches the goal or ``stop`` says so (blossom RRT is
-    this loop with its own steering)."""
+    this loop with its own steering); ``guided_targets`` of its iterations guided."""
     goal = pdef.goal
     tree = MotionTree(pdef.start)
     index: NearestIndex = si.new_nearest()  # typed: native calls (nearest/index.py)
@@ -77,20 +87,30 @@ def grow(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
                            "no chain of free cells joins the start and the goal")
 
     goal_target, sample_target, states = si.goal_target, si.sample_target, tree.states
+    guide: Any = None
+    if guided_targets > 0.0:
+        from rrt_cli.planners.guide import Guide  # only where guided: start-up
+        guide = Guide.begin(si, goal, guided_targets, pdef.start, stop.time_is_up)
     iterations = 0
     while True:
         limit = stop.status(iterations)
         if limit is not None:
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
-        target = goal_target(goal, rng) if uniform(rng) < goal_bias else sample_target(rng)
-        near = index.nearest(target)
+        guided = guide.next(states) if guide is not None and guide.drawn(rng) else None
+        if guided is not None:
+            near, target = guided
+        else:
+            target = goal_target(goal, rng) if uniform(rng) < goal_bias else sample_target(rng)
+            near = index.nearest(target)
         step = extend(states[near], target, rng)
         if step is None:
             continue
         new_state, control = step
         node = tree.add(near, new_state, control)
         index.add(new_state)
+        if guide is not None:
+            guide.add(node, new_state)
         if goal.reached(new_state):
             return tree.result(system, PlanStatus.SOLVED, node, iterations, began)
 

@@ -25,6 +25,11 @@ uniform, over free space or over the whole space (``free_space_targets``; by
 default as the space information prefers: the grid's free cells, the family's
 whole space).
 
+Where the space information asks for it (``si.rrt_guided_targets``: the Dubins car),
+a share of each tree's iterations is guided (:mod:`rrt_cli.planners.guide`): the
+start tree's node nearest the goal along the free cells, or the goal tree's nearest
+the start, extends toward a state down the way, and the other tree connects to it.
+
 The tree section of the output lists both trees' edges, goal-tree edges
 pointing toward the goal.
 """
@@ -36,8 +41,9 @@ import time
 from dataclasses import dataclass
 from enum import Enum
 
-from typing import Optional
+from typing import Any, Optional
 
+from planning_core.goal import GoalRegion
 from planning_core.problem_definition import ProblemDefinition
 from planning_core.samplers import uniform
 from planning_core.space_information import GeometricSpaceInformation
@@ -73,6 +79,10 @@ class RRTConnectParams:
     """Share of the random targets drawn from the trees' frontier (free cells with
     no node beside covered ones, where the world offers it; not for a directed system,
     the Dubins car); 0 gives the published RRT-Connect."""
+    guided_targets: Optional[float] = None
+    """The share of each tree's iterations that extend its node nearest the other
+    root along the free cells toward a state down the way (as ``RRTParams.
+    guided_targets``); None: the space information's ``rrt_guided_targets``."""
     def __post_init__(self):
         if not 0.0 <= self.frontier_targets <= 1.0:
             raise ValueError("frontier_targets must be in [0, 1]")
@@ -99,6 +109,8 @@ class _Tree(MotionTree):
         self.index.add(self.states[0])
         # The goal tree's edges are travelled child -> parent by the final path.
         self.toward_root = toward_root
+        self.guide: Any = None
+        """Its nodes not yet guided from (:class:`~rrt_cli.planners.guide.Guide`), or None."""
 
     def flip(self, state: tuple[float, ...]) -> tuple[float, ...]:
         """A path's state as this tree holds it, and back (reversing is its own
@@ -132,10 +144,13 @@ class _Grower:
         self.rng = rng
 
     def grow(self, tree: _Tree, target: tuple[float, ...],
-             connecting: bool = False) -> tuple[_Grow, int]:
-        """The outcome and the index of the node added (-1 when trapped)."""
-        target = tree.flip(target)
-        near = tree.index.nearest(target)
+             connecting: bool = False, near: int = -1) -> tuple[_Grow, int]:
+        """The outcome and the index of the node added (-1 when trapped): from the
+        node nearest ``target``, a path's state; or from ``near`` toward ``target``
+        held as the tree holds its states (a guided iteration)."""
+        if near < 0:
+            target = tree.flip(target)
+            near = tree.index.nearest(target)
         near_state = tree.states[near]
         clipped = False
         if self.max_step > 0.0:
@@ -153,6 +168,8 @@ class _Grower:
             return _Grow.TRAPPED, -1  # free one way only (a rounding tie, other samples)
         added = tree.add(near, new)
         tree.index.add(new)
+        if tree.guide is not None:
+            tree.guide.add(added, new)
         if self.frontier is not None:
             self.frontier.cover(new)
         reached = not clipped and new == target
@@ -216,6 +233,7 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         frontier.cover(goal)
     grower = _Grower(si, params, rng, frontier)
     draw_target = _target_sampler(si, params, rng, frontier, stop)
+    _begin_guides(si, params, pdef, start_tree, goal_tree, stop)
     active, other = start_tree, goal_tree
     iterations = 0
     while True:
@@ -223,19 +241,37 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         if limit is not None:
             return result(limit, (), iterations)
         iterations += 1
-        path = _extend_and_connect(grower, active, other, start_tree, draw_target(), si, stop)
+        guide = active.guide
+        guided = guide.next(active.states) if guide is not None and guide.drawn(rng) else None
+        target, near = (draw_target(), -1) if guided is None else (guided[1], guided[0])
+        path = _extend_and_connect(grower, active, other, start_tree, target, near, si, stop)
         if path is not None:
             return result(PlanStatus.SOLVED, path, iterations)
         active, other = other, active
 
 
+def _begin_guides(si: GeometricSpaceInformation, params: RRTConnectParams,
+                  pdef: ProblemDefinition, start_tree: _Tree, goal_tree: _Tree,
+                  stop: StopCondition) -> None:
+    """Guide each tree toward the other's root, where the space information asks
+    (the grid's Dijkstra from each root: on the planning clock)."""
+    share = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
+    if share > 0.0:
+        from rrt_cli.planners.guide import Guide  # only where guided: start-up
+        start = pdef.start
+        start_tree.guide = Guide.begin(si, pdef.goal, share, start, stop.time_is_up)
+        goal_tree.guide = Guide.begin(si, GoalRegion((start[0], start[1])), share,
+                                      goal_tree.states[0], stop.time_is_up)
+
+
 def _extend_and_connect(grower: _Grower, active: _Tree, other: _Tree, start_tree: _Tree,
-                        target, si: GeometricSpaceInformation,
+                        target, near: int, si: GeometricSpaceInformation,
                         stop: StopCondition) -> list | None:
-    """Extend ``active`` toward ``target``, then connect ``other`` to the new node
-    (until the time is up: a directed system's steps need not get nearer); the path
-    from start to goal when they meet."""
-    outcome, added = grower.grow(active, target)
+    """Extend ``active`` toward ``target`` (from ``near``, a guided iteration, or from
+    the nearest node), then connect ``other`` to the new node (until the time is up: a
+    directed system's steps need not get nearer); the path from start to goal when
+    they meet."""
+    outcome, added = grower.grow(active, target, near=near)
     if outcome is _Grow.TRAPPED:
         return None
     meeting = active.flip(active.states[added])

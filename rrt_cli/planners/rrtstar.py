@@ -9,9 +9,8 @@ has one, ``frontier_targets``; after it, now and then one of the world's pinch p
 the tree node nearest to it and steers toward it as RRT does. Until a node is in the
 goal region, where the world measures the distance to the goal along its free cells
 (the grid), a share of iterations (``guided_targets``) instead takes the node nearest
-the goal by it, each node once, toward the next cell down the way (for the Dubins car,
-a pose where the way leaves a cell, further down a straight run; a departure: on a big map uniform and
-frontier targets fill it before they reach a far goal). Steering is
+the goal by it, each node once, toward a state down the way (:mod:`rrt_cli.planners.
+guide`; a departure from the paper). Steering is
 :class:`StraightLineSteering`'s: straight, at most ``extent_fraction`` of the space's
 extent, a blocked motion cut short ``wall_clearance`` before its first invalid state.
 The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
@@ -38,17 +37,15 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
-from planning_core.heap import HeapEntry, heap_pop, heap_push
 from planning_core.interrupt import Stop
 from planning_core.samplers import randint, uniform
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
+from rrt_cli.planners.guide import Guide
 from rrt_cli.planners.prmstar import star_neighbor_count
 from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 State = tuple[float, ...]
-GUIDE_CELLS = 1
-"""How far down the free cells a guided target lies from its node, in cells."""
 
 
 @dataclass(frozen=True)
@@ -70,10 +67,8 @@ class RRTStarParams:
     one, as RRT-Connect's); after it, none (the optimization draws as the paper's)."""
     guided_targets: float = 0.5
     """Until the first solution, the share of iterations that extend the node nearest
-    the goal along the free cells (``si.distance_along_free_space``, where the world
-    measures it), each node once, toward the state ``GUIDE_CELLS`` cells down its
-    cheapest chain of cells (``ahead_of``: the point's cell centre; the Dubins car's pose
-    where the chain leaves a cell, at the end of its straight run). 0: none."""
+    the goal along the free cells, each node once, toward a state down its cheapest
+    chain of cells (:mod:`rrt_cli.planners.guide`). 0: none."""
     pinch_targets: float = 0.01
     """After the first solution, the share of targets that are the world's pinch
     points where it has any (``si.pinch_points``: passable only by a node exactly
@@ -171,10 +166,8 @@ class StarSearch:
                  draw_target: Callable[[float], Optional[State]], stop: Stop = None) -> None:
         self.si, self.goal, self.rng, self.stop = si, pdef.goal, rng, stop
         self.guided_share = params.guided_targets
-        self.along: Any = None
-        """The distance down the free cells (:meth:`begin_guide`), or None."""
-        self.guide: list[HeapEntry] = []
-        """Nodes not yet guided from, by :attr:`along` (until the first solution)."""
+        self.guide: Optional[Guide] = None
+        """The nodes not yet guided from (:meth:`begin_guide`; until the first solution)."""
         self.goal_bias, self.rewire_factor = params.goal_bias, params.rewire_factor
         self.frontier_share = params.frontier_targets
         self.frontier = si.frontier() if self.frontier_share > 0.0 else None
@@ -197,7 +190,8 @@ class StarSearch:
 
     def iterate(self) -> bool:
         """One iteration; True when the best solution became cheaper."""
-        guided = self._guided() if self._guiding() else None
+        guide = self.guide if not self.goal_nodes else None
+        guided = guide.next(self.tree.states) if guide and guide.drawn(self.rng) else None
         if guided is not None:
             steered = self._steer(guided[1], guided[0])
         else:
@@ -216,8 +210,8 @@ class StarSearch:
         self.index_nodes.append(node)
         if self.frontier is not None and not self.goal_nodes:
             self.frontier.cover(new)
-        if self.along is not None and not self.goal_nodes:
-            heap_push(self.guide, HeapEntry(self.along(new[0], new[1]), node))
+        if guide is not None:
+            guide.add(node, new)
         changed = self._rewire(node, neighbours)
         if self.goal.reached(new):
             self.goal_nodes.append(node)
@@ -243,32 +237,11 @@ class StarSearch:
                 return pinches[randint(rng, 0, len(pinches) - 1)]
         return self.draw_target(self.best_cost)
 
-    def _guiding(self) -> bool:
-        """Whether this iteration is a guided one (``guided_targets``, until a node is
-        in the goal region)."""
-        return (self.along is not None and not self.goal_nodes
-                and uniform(self.rng) < self.guided_share)
-
     def begin_guide(self) -> None:
         """Measure the distance down the free cells where the world does (with
-        ``guided_targets``; the grid's Dijkstra, so on the planning clock); elsewhere
-        no guided draws at all."""
-        if self.guided_share > 0.0:
-            self.along = self.si.distance_along_free_space(self.goal, self.stop)
-        if self.along is not None:  # the tree is its root alone
-            root = self.tree.states[0]
-            heap_push(self.guide, HeapEntry(self.along(root[0], root[1]), 0))
-
-    def _guided(self) -> Optional[tuple[int, State]]:
-        """The node nearest the goal along the free cells not guided from before, and
-        the point ``GUIDE_CELLS`` cells further down them; None when every node has been."""
-        along, guide, states = self.along, self.guide, self.tree.states
-        while guide:
-            node = heap_pop(guide).order
-            ahead = along.ahead_of(states[node], GUIDE_CELLS)
-            if ahead is not None:
-                return node, ahead
-        return None
+        ``guided_targets``; the grid's Dijkstra, so on the planning clock)."""
+        self.guide = Guide.begin(self.si, self.goal, self.guided_share, self.tree.states[0],
+                                 self.stop)
 
     def _steer(self, target: State, near: int = -1) -> Optional[tuple[int, State]]:
         """``near`` (by default the node nearest ``target``) and the new state steered

@@ -1,7 +1,7 @@
 """The Dubins car (``-dubins [-radius R]``): every answer valid under the validator's
 own checks with the turning check, and as a point path; reproducible; the flags'
-usage errors; RRT-Connect's reversed goal tree; the nearest index exact; RRT*'s guided
-targets drive a maze."""
+usage errors; RRT-Connect's reversed goal tree; the nearest index exact; the guided
+targets drive RRT, RRT-Connect, RRT* and Informed RRT* through a maze."""
 
 import math
 import random
@@ -14,7 +14,7 @@ from planning_core.problem_text import parse_problem
 from planning_core.setups import grid_setup
 from planning_core.systems.dubins import DubinsOptions
 from planning_core.vehicles import Vehicle
-from rrt_cli.planners import informed, rrtstar
+from rrt_cli.planners import informed, rrt, rrtconnect, rrtstar
 from rrt_cli.planners.base import StopCondition
 from tests.conftest import COURSE_PROBLEMS, ROOT, plan_in_process, run_planner
 from validator.checks import validate_output, validate_plan
@@ -286,15 +286,16 @@ def test_the_guided_targets_join_start_to_goal_by_free_curves(name, radius):
     assert targets <= turns + 2
 
 
-@pytest.mark.parametrize("module", [rrtstar, pytest.param(informed, marks=pytest.mark.slow)],
-                         ids=["rrtstar", "informed"])  # alike until the first solution
-def test_guided_targets_take_the_car_through_a_maze(module):
-    """maze-50, seeds 1-2, 700 iterations: RRT* and Informed RRT* with guided targets
-    reach the goal with a valid answer; with none, neither does (0/2 in 30 s before)."""
+@pytest.mark.parametrize("module", [rrt, rrtconnect, rrtstar,
+                                    pytest.param(informed, marks=pytest.mark.slow)],
+                         ids=["rrt", "rrtconnect", "rrtstar", "informed"])  # the last two
+def test_guided_targets_take_the_car_through_a_maze(module):  # alike until a solution
+    """maze-50, seeds 1-2, 700 iterations: each planner with its guided targets by
+    default reaches the goal with a valid answer; with none, none does (0/2 in 30 s)."""
     text = (MAZES / "maze-50.sw").read_text()
     setup = grid_setup(parse_problem(text), Vehicle.DUBINS)
     solved = []
-    for share in (module.Params().guided_targets, 0.0):
+    for share in (module.Params().guided_targets, 0.0):  # RRT's None: the car's 0.5
         results = [module.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=700),
                                 random.Random(seed), module.Params(guided_targets=share))
                    for seed in (1, 2)]

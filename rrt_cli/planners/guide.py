@@ -1,0 +1,60 @@
+"""Guided iterations: where the world measures the distance to the goal along its free
+cells (``si.distance_along_free_space``: the grid), a share of a tree's iterations, until
+its first solution, extends the node nearest the goal by that distance, each node once,
+toward a state ``GUIDE_CELLS`` cells further down the cheapest chain of cells (``ahead_of``:
+the point's next cell centre; the Dubins car's pose where the chain leaves a cell, at the
+end of its straight run). On a big map uniform targets fill the map before they reach a
+far goal; these walk the tree down the way. RRT* and Informed RRT* guide every system
+that has a way; RRT only where the space information asks (the Dubins car).
+"""
+
+from __future__ import annotations
+
+import random
+from typing import Any, Optional
+
+from planning_core.heap import HeapEntry, heap_pop, heap_push
+from planning_core.interrupt import Stop
+from planning_core.samplers import uniform
+
+State = tuple[float, ...]
+GUIDE_CELLS = 1
+"""How far down the free cells a guided target lies from its node, in cells."""
+
+
+class Guide:
+    """The nodes not yet guided from, by their distance to the goal along the free
+    cells (``along``), and the share of iterations that take one."""
+
+    def __init__(self, along: Any, share: float, root: State) -> None:
+        self.along, self.share = along, share
+        self.waiting: list[HeapEntry] = [HeapEntry(along(root[0], root[1]), 0)]
+
+    @staticmethod
+    def begin(si: Any, goal: Any, share: float, root: State,
+              stop: Stop = None) -> Optional["Guide"]:
+        """The guide of a tree that is ``root`` alone, or None without guided iterations
+        (a share of 0, or a world that measures no way: the family). Measuring is the
+        grid's Dijkstra, so it runs on the planning clock."""
+        if share <= 0.0:
+            return None
+        along = si.distance_along_free_space(goal, stop)
+        return None if along is None else Guide(along, share, root)
+
+    def drawn(self, rng: random.Random) -> bool:
+        """Whether this iteration is a guided one (one draw of ``rng``)."""
+        return uniform(rng) < self.share
+
+    def add(self, node: int, state: State) -> None:
+        heap_push(self.waiting, HeapEntry(self.along(state[0], state[1]), node))
+
+    def next(self, states: list[State]) -> Optional[tuple[int, State]]:
+        """The waiting node nearest the goal that has a way on, and its target; None
+        when no node waits."""
+        along, waiting = self.along, self.waiting
+        while waiting:
+            node = heap_pop(waiting).order
+            ahead = along.ahead_of(states[node], GUIDE_CELLS)
+            if ahead is not None:
+                return node, ahead
+        return None
