@@ -163,9 +163,11 @@ class _Grower:
         if step is None:
             return _Grow.TRAPPED, -1
         new = step[0]
-        if (tree.toward_root and tree.reverse is None
-                and self.si.first_hit(new, near_state) is not None):
-            return _Grow.TRAPPED, -1  # free one way only (a rounding tie, other samples)
+        if tree.toward_root and self.si.first_hit(tree.flip(new),
+                                                  tree.flip(near_state)) is not None:
+            # Free one way only (a rounding tie, other samples; for a reversed tree, the
+            # curve travelled forward): a path through it would fail its check every time.
+            return _Grow.TRAPPED, -1
         added = tree.add(near, new)
         tree.index.add(new)
         if tree.guide is not None:

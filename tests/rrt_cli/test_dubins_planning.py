@@ -181,8 +181,10 @@ def test_the_nearest_index_is_the_brute_force_nearest():
 
 
 def test_rrtconnect_joins_a_goal_tree_grown_in_reversed_poses():
-    """The goal tree holds poses turned around; its edges come back travelled
-    toward the goal, and the path's every motion is free as travelled."""
+    """The goal tree holds poses turned around; its edges come back travelled toward
+    the goal, every one free as travelled (a curve and its reverse, sampled from
+    opposite ends, can differ by rounding: a motion free one way only is not kept, or
+    each path through it would fail its final check), and so the path's motions."""
     from rrt_cli.planners import rrtconnect
     from rrt_cli.planners.base import StopCondition
     problem = parse_problem(COURSE_PROBLEMS[3].read_text())
@@ -194,17 +196,35 @@ def test_rrtconnect_joins_a_goal_tree_grown_in_reversed_poses():
         path = result.path
         assert path[0] == setup.pdef.start and len(path[-1]) == 2  # free heading at both ends
         assert all(si.first_hit(a, b) is None for a, b in zip(path, path[1:]))
-        # the start tree's edges are free as travelled; the goal tree's, printed
-        # toward the goal, are the reversed curves it checked: the same length (their
-        # samples may differ by rounding)
-        reversed_edges = 0
-        for a, _, b in result.edges:
-            if si.first_hit(a, b) is None:
-                continue
-            back = si.distance(si.reverse_state(b), si.reverse_state(a))
-            assert si.distance(a, b) == pytest.approx(back, rel=1e-9, abs=1e-9)
-            reversed_edges += 1
-        assert reversed_edges <= len(result.edges) // 10
+        assert all(si.first_hit(a, b) is None for a, _, b in result.edges)
+
+
+class _LeftBlocked:
+    """The car's space information in a world where, besides the map's walls, every
+    motion ending over 0.3 to the left of where it began is blocked: a motion and its
+    reverse differ there, as rounding makes a curve's samples differ (rarely: on
+    maze-200, seed 13, each meeting of the trees failed its final check on one)."""
+
+    def __init__(self, si):
+        self.si = si
+
+    def __getattr__(self, name):
+        return getattr(self.si, name)
+
+    def first_hit(self, a, b):
+        from planning_core.dubins_space_information import CurveHit
+        return CurveHit(0.5) if b[0] < a[0] - 0.3 else self.si.first_hit(a, b)
+
+
+def test_rrtconnect_keeps_no_goal_tree_motion_that_is_blocked_as_travelled():
+    from rrt_cli.planners import rrtconnect
+    from rrt_cli.planners.base import StopCondition
+    setup = grid_setup(parse_problem(COURSE_PROBLEMS[3].read_text()), Vehicle.DUBINS)
+    si = _LeftBlocked(setup.si)
+    result = rrtconnect.solve(si, setup.pdef, StopCondition(60.0, max_iterations=300),
+                              random.Random(1))
+    assert len(result.edges) > 50
+    assert all(si.first_hit(a, b) is None for a, _, b in result.edges)
 
 
 @pytest.mark.parametrize("planner", ["rrtstar", "informed"])
