@@ -79,8 +79,9 @@ class GeometricSpaceInformation(Protocol):
     """How far a motion cut short stops before its first invalid state (the grid:
     a map unit; the family: one check step)."""
     rrt_guided_targets: float
-    """RRT's share of guided iterations by default (``RRTParams.guided_targets``): the
-    Dubins car's 0.5, 0 elsewhere (the point's RRT is the course's reference loop)."""
+    """RRT's and RRT-Connect's share of guided iterations by default (their params'
+    ``guided_targets``): the Dubins car's 0.5, 0 elsewhere (the point's RRT is the
+    course's reference loop)."""
     space: Any
     """The state space (``spaces.StateSpace``): bounds, angles and metric groups, whose
     distance :meth:`distance` is never below (informed sampling's ellipsoid)."""

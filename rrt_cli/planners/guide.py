@@ -5,7 +5,8 @@ toward a state ``GUIDE_CELLS`` cells further down the cheapest chain of cells (`
 the point's next cell centre; the Dubins car's pose where the chain leaves a cell, at the
 end of its straight run). On a big map uniform targets fill the map before they reach a
 far goal; these walk the tree down the way. RRT* and Informed RRT* guide every system
-that has a way; RRT only where the space information asks (the Dubins car).
+that has a way; RRT and RRT-Connect only where the space information asks
+(``rrt_guided_targets``: the Dubins car).
 """
 
 from __future__ import annotations
