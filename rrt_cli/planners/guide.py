@@ -42,16 +42,15 @@ class Guide:
         along = si.distance_along_free_space(goal, stop)
         return None if along is None else Guide(along, share, root)
 
-    def drawn(self, rng: random.Random) -> bool:
-        """Whether this iteration is a guided one (one draw of ``rng``)."""
-        return uniform(rng) < self.share
-
     def add(self, node: int, state: State) -> None:
         heap_push(self.waiting, HeapEntry(self.along(state[0], state[1]), node))
 
-    def next(self, states: list[State]) -> Optional[tuple[int, State]]:
-        """The waiting node nearest the goal that has a way on, and its target; None
-        when no node waits."""
+    def draw(self, rng: random.Random, states: list[State]) -> Optional[tuple[int, State]]:
+        """This iteration's guided node and its target, when it is a guided one (one
+        draw of ``rng``): the waiting node nearest the goal that has a way on. None when
+        it is not guided, or no node waits."""
+        if uniform(rng) >= self.share:
+            return None
         along, waiting = self.along, self.waiting
         while waiting:
             node = heap_pop(waiting).order

@@ -97,7 +97,7 @@ def grow(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
         if limit is not None:
             return tree.result(system, limit, None, iterations, began)
         iterations += 1
-        guided = guide.next(states) if guide is not None and guide.drawn(rng) else None
+        guided = guide.draw(rng, states) if guide is not None else None
         if guided is not None:
             near, target = guided
         else:

@@ -243,8 +243,7 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         if limit is not None:
             return result(limit, (), iterations)
         iterations += 1
-        guide = active.guide
-        guided = guide.next(active.states) if guide is not None and guide.drawn(rng) else None
+        guided = active.guide.draw(rng, active.states) if active.guide is not None else None
         target, near = (draw_target(), -1) if guided is None else (guided[1], guided[0])
         path = _extend_and_connect(grower, active, other, start_tree, target, near, si, stop)
         if path is not None:

@@ -191,7 +191,7 @@ class StarSearch:
     def iterate(self) -> bool:
         """One iteration; True when the best solution became cheaper."""
         guide = self.guide if not self.goal_nodes else None
-        guided = guide.next(self.tree.states) if guide and guide.drawn(self.rng) else None
+        guided = guide.draw(self.rng, self.tree.states) if guide is not None else None
         if guided is not None:
             steered = self._steer(guided[1], guided[0])
         else:
