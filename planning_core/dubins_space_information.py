@@ -208,6 +208,10 @@ class DubinsSpaceInformation:
         cells = self.world.distance_along_cells(goal.point, stop)
         return PoseGuide(cells, self.world.printable_point(goal.point))
 
+    def prepare_distance_along_free_space(self) -> None:
+        """Import the Dijkstra's module (the set-up of a planner that guides)."""
+        self.world.prepare_distance_along_cells()
+
 
 class PoseGuide:
     """The grid's distance down the free cells (:class:`~planning_core.worlds.

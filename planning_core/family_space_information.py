@@ -55,6 +55,9 @@ class FamilySpaceInformation:
         """No cells to walk in a continuous world."""
         return None
 
+    def prepare_distance_along_free_space(self) -> None:
+        """Nothing to load."""
+
     def goal_target(self, goal: Any, rng: random.Random) -> State:
         """The goal's values; the variables it does not name from a uniform sample
         (one draw per variable; none when the goal names every variable)."""

@@ -130,6 +130,10 @@ class GridGeometricSpaceInformation:
         ``ahead_of(state, cells)``: a point that many cells down the way."""
         return self.world.distance_along_cells(goal.point, stop)
 
+    def prepare_distance_along_free_space(self) -> None:
+        """Import the Dijkstra's module (the set-up of a planner that guides)."""
+        self.world.prepare_distance_along_cells()
+
 
 @dataclass(frozen=True)
 class GridControlOptions:

@@ -138,6 +138,10 @@ class GeometricSpaceInformation(Protocol):
         cells)`` (a state that many cells down the way, or None), for RRT*'s guided
         targets; or None (the family)."""
 
+    def prepare_distance_along_free_space(self) -> None:
+        """Load the code :meth:`distance_along_free_space` runs: a planner's set-up,
+        so that its first measuring on the planning clock pays no import."""
+
 
 class ControlSpaceInformation(Protocol):
     """A system driven by controls, in a world."""

@@ -102,6 +102,12 @@ class GridWorld:
         from planning_core.worlds.grid_distance import CellDistanceToGoal
         return CellDistanceToGoal(self.problem, (goal[0], goal[1]), stop=stop)
 
+    @staticmethod
+    def prepare_distance_along_cells() -> None:
+        """Import :meth:`distance_along_cells`'s module, which only guiding planners
+        load (start-up), ahead of their planning clock."""
+        import planning_core.worlds.grid_distance  # noqa: F401
+
     def frontier(self):
         """An empty :class:`~planning_core.worlds.grid_frontier.FrontierCells` of this map."""
         from planning_core.worlds.grid_frontier import FrontierCells
