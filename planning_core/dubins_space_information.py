@@ -194,9 +194,10 @@ class DubinsSpaceInformation:
         heading as every target of the car's is (:class:`PoseFrontier`)."""
         return PoseFrontier(self.world.frontier(), self._heading)
 
-    def pinch_points(self) -> list[tuple[float, float, float]]:
+    def bend_points(self) -> list[tuple[float, float, float]]:
         """The map's pinch points (:meth:`GridWorld.pinch_points`), each as the two
-        poses that pass it along its free diagonal: heading up-right and down-left."""
+        poses that pass it along its free diagonal: heading up-right and down-left.
+        Not the convex corners: a car turns round a corner, not on it."""
         poses = []
         for x, y in self.world.pinch_points():
             poses += [(x, y, 0.25 * math.pi), (x, y, 1.25 * math.pi)]

@@ -47,8 +47,8 @@ class FamilySpaceInformation:
         """No frontier of cells in a continuous space."""
         return None
 
-    def pinch_points(self) -> list:
-        """Empty: no state of a continuous world is passable only exactly."""
+    def bend_points(self) -> list:
+        """Empty: no state of a continuous world is singled out."""
         return []
 
     def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:

@@ -120,10 +120,11 @@ class GridGeometricSpaceInformation:
         """An empty frontier of the map's free cells."""
         return self.world.frontier()
 
-    def pinch_points(self) -> list[tuple[float, float]]:
+    def bend_points(self) -> list[tuple[float, float]]:
         """The map's corners between two diagonal blocked cells that a path may pass
-        through (:meth:`GridWorld.pinch_points`)."""
-        return self.world.pinch_points()
+        through (:meth:`GridWorld.pinch_points`), then its convex corners, where
+        shortest paths bend (:meth:`GridWorld.convex_corners`)."""
+        return self.world.pinch_points() + self.world.convex_corners()
 
     def distance_along_free_space(self, goal: Any, stop: Stop = None) -> Any:
         """Position -> distance to the goal along the free cells (Dijkstra, once), with

@@ -129,9 +129,10 @@ class GeometricSpaceInformation(Protocol):
     def frontier(self) -> Any:
         """An empty frontier of cells (RRT-Connect's targets), or None."""
 
-    def pinch_points(self) -> Sequence[State]:
-        """States a path may pass only exactly through (a grid's corners between two
-        diagonal blocked cells): RRT*'s occasional targets once it has a solution."""
+    def bend_points(self) -> Sequence[State]:
+        """States where shortest paths bend or pass only exactly through (a grid's
+        convex corners and its corners between two diagonal blocked cells): RRT*'s
+        occasional targets once it has a solution."""
 
     def distance_along_free_space(self, goal: Goal, stop: Stop = None) -> Any:
         """Position -> distance to the goal along free space, with ``ahead_of(state,

@@ -31,6 +31,9 @@ SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
 # far below the 0.1 goal tolerance and far inside its cell.
 EDGE_NUDGE: Final = 1e-6
+# How far a convex corner whose own cell is blocked moves into the free cell diagonally
+# below-left of it: a path bending there is that much longer than through the corner.
+CORNER_NUDGE: Final = 1e-9
 
 
 class SegmentHit:
@@ -129,6 +132,29 @@ class GridWorld:
                         and not cells[below + col - 1] and not cells[above + col]:
                     pinches.append((float(col), float(row)))
         return pinches
+
+    def convex_corners(self) -> list[tuple[float, float]]:
+        """The interior grid corners with exactly one blocked cell of the four around:
+        a shortest path bends round such corners (and through pinches), so a node on
+        one is worth having. Each as the free point on it: the corner itself, which
+        lies in the cell above-right of it (cells are half-open), or, when that cell
+        is the blocked one, the corner moved ``CORNER_NUDGE`` down-left into the free
+        cell there. Row by row from the bottom."""
+        width, cells = self.width, self.cells
+        corners: list[tuple[float, float]] = []
+        for row in range(1, self.height):
+            above = row * width
+            below = above - width
+            for col in range(1, width):
+                blocked = (int(cells[below + col - 1] != 0) + int(cells[below + col] != 0)
+                           + int(cells[above + col - 1] != 0) + int(cells[above + col] != 0))
+                if blocked != 1:
+                    continue
+                if cells[above + col]:
+                    corners.append((col - CORNER_NUDGE, row - CORNER_NUDGE))
+                else:
+                    corners.append((float(col), float(row)))
+        return corners
 
 
     def first_sampled_collision(self, x0: float, y0: float, x1: float, y1: float,

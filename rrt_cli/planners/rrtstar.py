@@ -4,8 +4,8 @@ the point vehicle and the geometric family (arm2, rigid2).
 
 Each iteration draws a target (until a node is in the goal region: the goal with
 probability ``goal_bias``, else mostly a point of the tree's frontier where the world
-has one, ``frontier_targets``; after it, now and then one of the world's pinch points,
-``pinch_targets``; otherwise a uniform state), takes
+has one, ``frontier_targets``; after it, now and then one of the world's bend points,
+``bend_targets``; otherwise a uniform state), takes
 the tree node nearest to it and steers toward it as RRT does. Until a node is in the
 goal region, where the world measures the distance to the goal along its free cells
 (the grid), a share of iterations (``guided_targets``) instead takes the node nearest
@@ -69,10 +69,11 @@ class RRTStarParams:
     """Until the first solution, the share of iterations that extend the node nearest
     the goal along the free cells, each node once, toward a state down its cheapest
     chain of cells (:mod:`rrt_cli.planners.guide`). 0: none."""
-    pinch_targets: float = 0.01
-    """After the first solution, the share of targets that are the world's pinch
-    points where it has any (``si.pinch_points``: passable only by a node exactly
-    there); the rest as the paper's."""
+    bend_targets: float = 0.05
+    """After the first solution, the share of targets that are the world's bend
+    points where it has any (``si.bend_points``: the grid's pinches, passable only
+    by a node exactly there, and its convex corners, where shortest paths bend); the
+    rest as the paper's."""
     partial_extension: bool = True
     """A blocked extension goes as far as it is free instead of adding nothing."""
     min_extension: float = 0.01
@@ -176,9 +177,9 @@ class StarSearch:
         if self.frontier is not None:
             self.frontier.cover(pdef.start)
         self.draw_target = draw_target
-        self.pinch_share = params.pinch_targets
-        self.pinches: Optional[list[State]] = None
-        """The world's pinch points, found when first drawn (after a solution)."""
+        self.bend_share = params.bend_targets
+        self.bends: Optional[list[State]] = None
+        """The world's bend points, found when first drawn (after a solution)."""
         self.distance, self.first_hit = si.distance, si.first_hit
         self.steering = StraightLineSteering(si, params.partial_extension,
                                              params.min_extension, params.wall_clearance)
@@ -222,7 +223,7 @@ class StarSearch:
 
     def _target(self) -> Optional[State]:
         """Until a node is in the goal region: the goal (``goal_bias``), else a frontier
-        cell's point (``frontier_targets``); after, a pinch point (``pinch_targets``);
+        cell's point (``frontier_targets``); after, a bend point (``bend_targets``);
         then ``draw_target``'s."""
         rng = self.rng
         if not self.goal_nodes:
@@ -231,12 +232,12 @@ class StarSearch:
             frontier = self.frontier
             if frontier and uniform(rng) < self.frontier_share:
                 return frontier.sample(rng)
-        elif self.pinch_share > 0.0:
-            if self.pinches is None:
-                self.pinches = list(self.si.pinch_points())
-            pinches = self.pinches
-            if pinches and uniform(rng) < self.pinch_share:
-                return pinches[randint(rng, 0, len(pinches) - 1)]
+        elif self.bend_share > 0.0:
+            if self.bends is None:
+                self.bends = list(self.si.bend_points())
+            bends = self.bends
+            if bends and uniform(rng) < self.bend_share:
+                return bends[randint(rng, 0, len(bends) - 1)]
         return self.draw_target(self.best_cost)
 
     def begin_guide(self) -> None:

@@ -264,12 +264,12 @@ def test_the_frontier_gives_poses_in_the_cells_beside_the_nodes():
 
 
 def test_pinch_poses_pass_the_pinch_along_its_free_diagonal():
-    """The car's pinch targets: each of the grid's pinch points with the two headings
-    that go through it (course space-0's at (3, 1)); a short straight motion into and
-    out of each is free, one beside the corner is not."""
+    """The car's bend targets: each of the grid's pinch points with the two headings
+    that go through it (course space-0's at (3, 1)), and no convex corner; a short
+    straight motion into and out of each is free, one beside the corner is not."""
     path = next(p for p in COURSE_PROBLEMS if p.stem == "space-0")
     si = grid_setup(parse_problem(path.read_text()), Vehicle.DUBINS).si
-    poses = si.pinch_points()
+    poses = si.bend_points()
     assert poses == [(3.0, 1.0, 0.25 * math.pi), (3.0, 1.0, 1.25 * math.pi)]
     for x, y, heading in poses:
         dx, dy = 0.2 * math.cos(heading), 0.2 * math.sin(heading)

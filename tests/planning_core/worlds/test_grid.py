@@ -112,3 +112,19 @@ def test_pinch_points_are_the_corners_passable_only_exactly():
                   for d in (1e-9, -1e-9)]
         assert through is not None or None in nudged, (x, y)
     assert GridWorld(parse_problem(SPACE0)).pinch_points() == [(3.0, 1.0)]
+
+
+def test_convex_corners_are_the_free_points_on_corners_of_one_blocked_cell():
+    # Rows from the top: one blocked cell (1, 1) alone, and a pinch at (4, 2) (blocked
+    # (3, 2) and (4, 1)), whose corner has two blocked cells round it.
+    text = "6\n4\n______\n___#__\n_#__#_\n______\n0.5\n0.5\n5.5\n3.5\n"
+    world = GridWorld(parse_problem(text))
+    corners = world.convex_corners()
+    nudge = 1 - 1e-9
+    assert corners == [(nudge, nudge), (2.0, 1.0), (4.0 - 1e-9, 1.0 - 1e-9), (5.0, 1.0),
+                       (1.0, 2.0), (2.0, 2.0), (3.0 - 1e-9, 2.0 - 1e-9), (5.0, 2.0),
+                       (3.0, 3.0), (4.0, 3.0)]  # row by row from the bottom
+    assert (4.0, 2.0) not in corners and world.pinch_points() == [(4.0, 2.0)]
+    for x, y in corners:
+        assert world.point_free(x, y)
+        assert max(abs(x - round(x)), abs(y - round(y))) < 2e-9
