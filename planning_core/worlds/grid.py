@@ -34,6 +34,11 @@ EDGE_NUDGE: Final = 1e-6
 # How far a convex corner whose own cell is blocked moves into the free cell diagonally
 # below-left of it: a path bending there is that much longer than through the corner.
 CORNER_NUDGE: Final = 1e-9
+# The four cells round a grid corner, as bits (GridWorld._corners).
+_BELOW_LEFT: Final = 1
+_BELOW_RIGHT: Final = 2
+_ABOVE_LEFT: Final = 4
+_ABOVE_RIGHT: Final = 8
 
 
 class SegmentHit:
@@ -122,16 +127,8 @@ class GridWorld:
         The corner itself lies in the free above-right cell (cells are half-open),
         so a segment from the below-left cell to it and on is free. Row by row from
         the bottom."""
-        width, cells = self.width, self.cells
-        pinches: list[tuple[float, float]] = []
-        for row in range(1, self.height):
-            above = row * width
-            below = above - width
-            for col in range(1, width):
-                if cells[below + col] and cells[above + col - 1] \
-                        and not cells[below + col - 1] and not cells[above + col]:
-                    pinches.append((float(col), float(row)))
-        return pinches
+        return [(float(col), float(row)) for col, row, around in self._corners()
+                if around == _BELOW_RIGHT | _ABOVE_LEFT]
 
     def convex_corners(self) -> list[tuple[float, float]]:
         """The interior grid corners with exactly one blocked cell of the four around:
@@ -140,20 +137,30 @@ class GridWorld:
         lies in the cell above-right of it (cells are half-open), or, when that cell
         is the blocked one, the corner moved ``CORNER_NUDGE`` down-left into the free
         cell there. Row by row from the bottom."""
-        width, cells = self.width, self.cells
         corners: list[tuple[float, float]] = []
+        for col, row, around in self._corners():
+            if around == _ABOVE_RIGHT:
+                corners.append((col - CORNER_NUDGE, row - CORNER_NUDGE))
+            elif around in (_BELOW_LEFT, _BELOW_RIGHT, _ABOVE_LEFT):
+                corners.append((float(col), float(row)))
+        return corners
+
+    def _corners(self) -> list[tuple[int, int, int]]:
+        """Each interior grid corner with a blocked cell round it, row by row from the
+        bottom: (column, row, which of the four are blocked, as ``_BELOW_LEFT`` ...
+        bits)."""
+        width, cells = self.width, self.cells
+        corners: list[tuple[int, int, int]] = []
         for row in range(1, self.height):
             above = row * width
             below = above - width
             for col in range(1, width):
-                blocked = (int(cells[below + col - 1] != 0) + int(cells[below + col] != 0)
-                           + int(cells[above + col - 1] != 0) + int(cells[above + col] != 0))
-                if blocked != 1:
-                    continue
-                if cells[above + col]:
-                    corners.append((col - CORNER_NUDGE, row - CORNER_NUDGE))
-                else:
-                    corners.append((float(col), float(row)))
+                around = ((_BELOW_LEFT if cells[below + col - 1] else 0)
+                          | (_BELOW_RIGHT if cells[below + col] else 0)
+                          | (_ABOVE_LEFT if cells[above + col - 1] else 0)
+                          | (_ABOVE_RIGHT if cells[above + col] else 0))
+                if around:
+                    corners.append((col, row, around))
         return corners
 
 

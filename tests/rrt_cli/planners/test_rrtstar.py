@@ -229,39 +229,32 @@ def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_
     assert found == [True, False]
 
 
-@pytest.mark.parametrize("name", sorted(MODULES))
-def test_bend_targets_take_the_pinch_that_other_targets_miss(name):
-    # course space-0's shortest path passes (3, 1), where two blocked cells touch corner
-    # to corner; round the cell above, no path is shorter than 4.05 (3.78 through it).
-    setup = setup_of("space-0")
-    assert setup.si.bend_points()[0] == (3.0, 1.0)  # the pinch, then the convex corners
-    module = MODULES[name]
-    costs = {}
-    for share in (0.05, 0.0):
-        result = module.solve(setup.si, optimizing(setup),
-                              StopCondition(60, max_iterations=1000), random.Random(1),
-                              module.Params(bend_targets=share))
-        costs[share] = assert_valid(setup, result).cost
-        assert ((3.0, 1.0) in result.path) == (share > 0.0)
-    assert costs[0.05] < 3.85 < 4.0 < costs[0.0]
+BENDS = {  # map: (iterations, a cost only a path through the bend points gets under)
+    # space-0's shortest path passes (3, 1), where two blocked cells touch corner to
+    # corner: round the cell above no path is shorter than 4.05 (3.78 through it).
+    "space-0": (1000, 3.85),
+    # space-3's bends round eight convex corners (47.11 to the goal point, 47.01 to the
+    # goal region); with bend targets 47.15 after 3000 iterations, without 48.77.
+    "space-3": (3000, 47.2),
+}
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
-def test_bend_targets_take_the_corners_the_shortest_path_bends_round(name):
-    """course space-3's shortest path bends round eight convex corners (47.11 to the
-    goal point, 47.01 to the goal region): after 3000 iterations, with bend targets the
-    answer passes some of them and is under 47.2 (47.15); without, 48.77."""
-    setup = setup_of("space-3")
-    corners = set(setup.si.bend_points())
+@pytest.mark.parametrize("problem", sorted(BENDS))
+def test_bend_targets_take_the_corners_shortest_paths_pass(name, problem):
+    setup = setup_of(problem)
+    bends = setup.si.bend_points()
+    assert ((3.0, 1.0) in bends) == (problem == "space-0")  # the pinch
     module = MODULES[name]
+    iterations, bound = BENDS[problem]
     costs = {}
     for share in (0.05, 0.0):
         result = module.solve(setup.si, optimizing(setup),
-                              StopCondition(60, max_iterations=3000), random.Random(1),
+                              StopCondition(60, max_iterations=iterations), random.Random(1),
                               module.Params(bend_targets=share))
         costs[share] = assert_valid(setup, result).cost
-        assert bool(corners & set(result.path)) == (share > 0.0)
-    assert costs[0.05] < 47.2 < costs[0.0], costs
+        assert bool(set(bends) & set(result.path)) == (share > 0.0)
+    assert costs[0.05] < bound < costs[0.0], costs
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
