@@ -134,6 +134,17 @@ def test_the_table_compares_with_ompl_in_cpp_when_it_ran():
     assert cells(table, "OMPL C++ RRT*")[2] == "OMPL C++ RRT*"
 
 
+def test_the_table_counts_the_answers_that_cut_corners_when_any_did():
+    ours = [optimizing("rrtstar", "p", s, "0.5:4") for s in (1, 2)]
+    theirs = [dataclasses.replace(optimizing("ompl-rrtstar", "p", s, "0.5:3"), corner_cuts=cuts)
+              for s, cuts in ((1, 0), (2, 5))]
+    assert "cutting corners" not in convergence.convergence_table(ours, (1.0,))[0]
+    table = convergence.convergence_table(ours + theirs, (1.0,))
+    assert table[0].split("|")[-2].strip() == "Answers cutting corners"
+    assert cells(table, "rrtstar (ours)")[-1] == "0/2"
+    assert cells(table, "OMPL RRT*")[-1] == "1/2"
+
+
 def test_an_unsolved_majority_has_no_median():
     runs = [optimizing("rrtstar", "p", 1, "0.5:3"), optimizing("rrtstar", "p", 2, ""),
             optimizing("rrtstar", "p", 3, "")]
