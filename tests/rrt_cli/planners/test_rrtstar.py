@@ -299,7 +299,7 @@ print(loaded, "planning_core.worlds.grid_distance" in sys.modules)
 
 @pytest.mark.parametrize("share, loaded", [(0.5, "True"), (0.0, "False")])
 def test_the_set_up_loads_the_guides_dijkstra_before_the_clock(share, loaded):
-    """Its import (a fresh process's first use, about 0.03 ms) would otherwise count
+    """Its import (tens of microseconds in a fresh process) would otherwise count
     toward the first solution's time; without guided targets nothing loads it."""
     done = subprocess.run([sys.executable, "-c", SET_UP_ONLY, str(ROOT),
                            str(COURSE_DIR / "simple-0.sw"), str(share)],
