@@ -5,12 +5,12 @@ the point vehicle and the geometric family (arm2, rigid2).
 Each iteration draws a target (until a node is in the goal region: the goal with
 probability ``goal_bias``, else mostly a point of the tree's frontier where the world
 has one, ``frontier_targets``; after it, now and then one of the world's bend points,
-``bend_targets``; otherwise a uniform state), takes
-the tree node nearest to it and steers toward it as RRT does. Until a node is in the
-goal region, where the world measures the distance to the goal along its free cells
-(the grid), a share of iterations (``guided_targets``) instead takes the node nearest
-the goal by it, each node once, toward a state down the way (:mod:`rrt_cli.planners.
-guide`; a departure from the paper). Steering is
+``bend_targets``, or a point of the goal region's rim, ``rim_targets``; otherwise a
+uniform state), takes the tree node nearest to it and steers toward it as RRT does.
+Until a node is in the goal region, where the world measures the distance to the goal
+along its free cells (the grid), a share of iterations (``guided_targets``) instead
+takes the node nearest the goal by it, each node once, toward a state down the way
+(:mod:`rrt_cli.planners.guide`; a departure from the paper). Steering is
 :class:`StraightLineSteering`'s: straight, at most ``extent_fraction`` of the space's
 extent, a blocked motion cut short ``wall_clearance`` before its first invalid state.
 The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
@@ -37,6 +37,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
+from planning_core.goal import PLANNER_MARGIN
 from planning_core.interrupt import Stop
 from planning_core.samplers import randint, uniform
 from rrt_cli.planners.base import PlanResult, PlanStats, PlanStatus, StopCondition, guarded
@@ -46,6 +47,10 @@ from rrt_cli.planners.steering import StraightLineSteering
 from rrt_cli.planners.tree import MotionTree, start_in_goal
 
 State = tuple[float, ...]
+
+RIM_INSIDE = 1.0 - 4 * PLANNER_MARGIN
+"""Rim targets lie this fraction of the tolerance from the goal's centre: inside the
+planners' goal test (``goal.PLANNER_MARGIN``) whatever the rounding."""
 
 
 @dataclass(frozen=True)
@@ -74,6 +79,10 @@ class RRTStarParams:
     points where it has any (``si.bend_points``: the grid's pinches, passable only
     by a node exactly there, and its convex corners, where shortest paths bend); the
     rest as the paper's."""
+    rim_targets: float = 0.02
+    """After the first solution, the share of targets on the goal region's rim where
+    the region is a ball (``si.goal_center``), where a shortest path from outside it
+    ends: a uniform state drawn in toward the centre to the tolerance. 0: none."""
     partial_extension: bool = True
     """A blocked extension goes as far as it is free instead of adding nothing."""
     min_extension: float = 0.01
@@ -180,6 +189,9 @@ class StarSearch:
         self.bend_share = params.bend_targets
         self.bends: Optional[list[State]] = None
         """The world's bend points, found when first drawn (after a solution)."""
+        self.rim_share = params.rim_targets
+        self.centre = si.goal_center(pdef.goal) if self.rim_share > 0.0 else None
+        self.rim_radius = pdef.goal.tolerance * RIM_INSIDE
         self.distance, self.first_hit = si.distance, si.first_hit
         self.steering = StraightLineSteering(si, params.partial_extension,
                                              params.min_extension, params.wall_clearance)
@@ -223,8 +235,8 @@ class StarSearch:
 
     def _target(self) -> Optional[State]:
         """Until a node is in the goal region: the goal (``goal_bias``), else a frontier
-        cell's point (``frontier_targets``); after, a bend point (``bend_targets``);
-        then ``draw_target``'s."""
+        cell's point (``frontier_targets``); after, a bend point (``bend_targets``) or
+        a point of the goal's rim (``rim_targets``); then ``draw_target``'s."""
         rng = self.rng
         if not self.goal_nodes:
             if uniform(rng) < self.goal_bias:
@@ -232,13 +244,26 @@ class StarSearch:
             frontier = self.frontier
             if frontier and uniform(rng) < self.frontier_share:
                 return frontier.sample(rng)
-        elif self.bend_share > 0.0:
-            if self.bends is None:
-                self.bends = list(self.si.bend_points())
-            bends = self.bends
-            if bends and uniform(rng) < self.bend_share:
-                return bends[randint(rng, 0, len(bends) - 1)]
+        else:
+            if self.bend_share > 0.0:
+                if self.bends is None:
+                    self.bends = list(self.si.bend_points())
+                bends = self.bends
+                if bends and uniform(rng) < self.bend_share:
+                    return bends[randint(rng, 0, len(bends) - 1)]
+            if self.centre is not None and uniform(rng) < self.rim_share:
+                return self._rim_target()
         return self.draw_target(self.best_cost)
+
+    def _rim_target(self) -> Optional[State]:
+        """A uniform state drawn in along the way from the goal's centre to the goal's
+        rim (``interpolate`` covers distance evenly), None when it is the centre."""
+        centre, si = self.centre, self.si
+        state = si.sample_target(self.rng)
+        length = si.distance(centre, state)
+        if length <= self.rim_radius:
+            return state if length > 0.0 else None
+        return si.interpolate(centre, state, self.rim_radius / length)
 
     def begin_guide(self) -> None:
         """Measure the distance down the free cells where the world does (with

@@ -258,6 +258,32 @@ def test_bend_targets_take_the_corners_shortest_paths_pass(name, problem):
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
+def test_rim_targets_end_the_answer_on_the_goal_regions_rim(name):
+    """course-simple-0 has no blocked cell: the shortest path runs straight to the goal
+    disc's rim (0.9). After 2000 iterations, seeds 1-3, each answer with rim targets
+    ends on the rim and is shorter than the same seed's without, which ends inside.
+    arm2-pair1's goal is a ball of the joint metric: there too the answer ends on it."""
+    module = MODULES[name]
+    rim = module.Params().rim_targets
+    for problem, seeds, iterations in (("simple-0", (1, 2, 3), 2000), ("arm2-pair1", (1,), 500)):
+        setup = setup_of(problem)
+        goal = setup.pdef.goal
+        costs, depths = {}, {}
+        for share in (rim, 0.0):
+            for seed in seeds:
+                result = module.solve(setup.si, optimizing(setup),
+                                      StopCondition(60, max_iterations=iterations),
+                                      random.Random(seed), module.Params(rim_targets=share))
+                costs[share, seed] = assert_valid(setup, result).cost
+                depths[share, seed] = (goal.tolerance - goal.distance(result.path[-1])) \
+                    / goal.tolerance
+        for seed in seeds:
+            assert 0.0 < depths[rim, seed] < 1e-8 < depths[0.0, seed], depths
+            if problem == "simple-0":
+                assert costs[rim, seed] < costs[0.0, seed], costs
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
 def test_guided_targets_lead_down_the_free_cells(name):
     """random-d20-100, seeds 1-3, 1500 iterations: with guided targets every first
     solution comes, valid; with none, not one (uniform and frontier targets fill the
