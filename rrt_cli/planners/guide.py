@@ -32,6 +32,14 @@ class Guide:
         self.waiting: list[HeapEntry] = [HeapEntry(along(root[0], root[1]), 0)]
 
     @staticmethod
+    def prepare(si: Any, share: float) -> None:
+        """Before the planning clock, where iterations will be guided: load what
+        :meth:`begin` measures with (the grid's Dijkstra module), so that the clock
+        counts the measuring, not the import."""
+        if share > 0.0:
+            si.prepare_distance_along_free_space()
+
+    @staticmethod
     def begin(si: Any, goal: Any, share: float, root: State,
               stop: Stop = None) -> Optional["Guide"]:
         """The guide of a tree that is ``root`` alone, or None without guided iterations

@@ -61,9 +61,12 @@ class RRTParams:
 @guarded
 def solve(si: Any, pdef: Any, stop: StopCondition, rng: random.Random,
           params: RRTParams = RRTParams()) -> PlanResult:
+    guided = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
+    if guided > 0.0:
+        from rrt_cli.planners.guide import Guide  # only where guided: start-up
+        Guide.prepare(si, guided)
     began = time.perf_counter()
     steering = make_steering(si, params)
-    guided = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
     return grow(si, pdef, stop, rng, steering.extend, params.goal_bias, began, guided)
 
 

@@ -205,6 +205,10 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
           rng: random.Random, params: RRTConnectParams = RRTConnectParams()) -> PlanResult:
     if si.system.kinodynamic:
         raise ValueError("rrtconnect plans for geometric systems only")
+    share = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
+    if share > 0.0:
+        from rrt_cli.planners.guide import Guide  # only where guided: start-up
+        Guide.prepare(si, share)
     began = time.perf_counter()
     start, goal = pdef.start, si.goal_configuration(pdef.goal, rng)
     if goal is None:
@@ -235,7 +239,7 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         frontier.cover(goal)
     grower = _Grower(si, params, rng, frontier)
     draw_target = _target_sampler(si, params, rng, frontier, stop)
-    _begin_guides(si, params, pdef, start_tree, goal_tree, stop)
+    _begin_guides(si, share, pdef, start_tree, goal_tree, stop)
     active, other = start_tree, goal_tree
     iterations = 0
     while True:
@@ -251,12 +255,11 @@ def solve(si: GeometricSpaceInformation, pdef: ProblemDefinition, stop: StopCond
         active, other = other, active
 
 
-def _begin_guides(si: GeometricSpaceInformation, params: RRTConnectParams,
+def _begin_guides(si: GeometricSpaceInformation, share: float,
                   pdef: ProblemDefinition, start_tree: _Tree, goal_tree: _Tree,
                   stop: StopCondition) -> None:
-    """Guide each tree toward the other's root, where the space information asks
-    (the grid's Dijkstra from each root: on the planning clock)."""
-    share = si.rrt_guided_targets if params.guided_targets is None else params.guided_targets
+    """Guide each tree toward the other's root with ``share`` of its iterations (the
+    grid's Dijkstra from each root: on the planning clock)."""
     if share > 0.0:
         from rrt_cli.planners.guide import Guide  # only where guided: start-up
         start = pdef.start

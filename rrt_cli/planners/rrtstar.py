@@ -176,8 +176,7 @@ class StarSearch:
                  draw_target: Callable[[float], Optional[State]], stop: Stop = None) -> None:
         self.si, self.goal, self.rng, self.stop = si, pdef.goal, rng, stop
         self.guided_share = params.guided_targets
-        if self.guided_share > 0.0:
-            si.prepare_distance_along_free_space()
+        Guide.prepare(si, self.guided_share)
         self.guide: Optional[Guide] = None
         """The nodes not yet guided from (:meth:`begin_guide`; until the first solution)."""
         self.goal_bias, self.rewire_factor = params.goal_bias, params.rewire_factor
