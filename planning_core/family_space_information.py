@@ -150,6 +150,11 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         how many slices led to it (each instance shadows this with the fused one)."""
         raise NotImplementedError
 
+    @staticmethod
+    def native_extension(count: int) -> None:
+        """None: the family's control RRT extends by the steering's own loop."""
+        return None
+
     def sample_control(self, rng: random.Random) -> tuple:
         return self.system.sample_control(rng)
 

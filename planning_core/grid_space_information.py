@@ -224,6 +224,20 @@ class GridControlSpaceInformation:
             return None
         return end
 
+    def native_extension(self, count: int) -> Any:
+        """The control RRT's sampled extension (``count`` controls from
+        :meth:`sample_control`, each through :meth:`propagate_valid`, the end nearest
+        the target by :meth:`closeness`) in C, the same draws and floats
+        (``systems/ship_kernel.c``): its ``extend(state, target, rng)``. Only the
+        compiled build holds it, else None."""
+        try:
+            from planning_core.systems._ship_kernel import ShipKernel
+        except ImportError:
+            return None
+        system, world = self.system, self.world
+        return ShipKernel(world.cells, world.width, world.height, count, system.theta_range,
+                          system.max_thrust).extend
+
     def first_hit(self, a: Sequence[float], b: Sequence[float]) -> SegmentHit | None:
         """Where the straight segment between two positions first meets a blocked
         cell, walked exactly; None when it is free."""

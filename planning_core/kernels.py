@@ -10,7 +10,10 @@ together bit for bit):
   ``integrators.ReferenceIntegrator`` over ``StateSpace.satisfies_bounds``; fast, a
   generated class per system and scheme;
 - the body test: the shapes' (``ContinuousWorld.first_obstacle`` of the placed body);
-  fast, the compiled build's C kernel (``worlds/body_kernel.c``).
+  fast, the compiled build's C kernel (``worlds/body_kernel.c``);
+- the control RRT's sampled extension over the grid ships
+  (``ControlSamplingSteering.extend``); fast, the compiled build's C kernel
+  (``systems/ship_kernel.c``).
 
 The generated classes (``generated_kernels``) exist for the registered family
 systems' spaces (and their position goals) and dynamics; a problem's own metric
@@ -112,6 +115,9 @@ def describe(setup: Any) -> str:
         ship = si.system.kinodynamic
         name, owner = ("slice loop", si.system) if ship else ("segment test", si.world)
         found[name] = f"{type(owner).__name__}'s own, {mode(type(owner))}"
+        if ship:
+            found["RRT's extension"] = ("C kernel" if si.native_extension(1) is not None
+                                        else f"the steering's loop, {mode(type(si))}")
     says = {"metric": metric_version, "goal metric": metric_version,
             "integrator": integrator_version, "body test": body_version}
     parts = [f"{name}={says[name](value)}" if name in says else f"{name}={value}"

@@ -179,6 +179,11 @@ class ControlSpaceInformation(Protocol):
         """Orders pairs as the space's distance does (the grid: the squared distance
         of the positions; the family: the metric): compared, never added."""
 
+    def native_extension(self, count: int) -> Optional[Callable[..., Any]]:
+        """The control RRT's extension, ``count`` sampled controls and the valid end
+        nearest the target, as one native call ``extend(state, target, rng)`` with the
+        same draws and floats (the grid ships with the compiled build), or None."""
+
     def distance(self, a: Sequence[float], b: Sequence[float]) -> float:
         """The distance :meth:`new_nearest` orders by (the grid: of the positions; the
         family: the metric), for radii such as SST's."""

@@ -57,9 +57,11 @@ MODULES = (
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 
-KERNELS = {"planning_core.worlds._body_kernel": "planning_core/worlds/body_kernel.c"}
+KERNELS = {"planning_core.worlds._body_kernel": "planning_core/worlds/body_kernel.c",
+           "planning_core.systems._ship_kernel": "planning_core/systems/ship_kernel.c"}
 """Hand-written C kernels built with them (module: source), each with a Python
-reference that runs without the build (``BodyTest.meets``)."""
+reference that runs without the build (``BodyTest.meets``,
+``Spaceship.propagate_while``)."""
 
 GROUP = "rrt_hot"
 """mypyc's group: one shared library, ``rrt_hot__mypyc``, at the build's top level,
@@ -245,5 +247,5 @@ def activate(build_dir: str = BUILD_DIR) -> str:
         folder = os.path.join(build_dir, *package.split("."))
         __import__(package)
         sys.modules[package].__path__.insert(0, folder)
-    state = f"compiled ({len(MODULES)} modules, {len(KERNELS)} C kernel, from {build_dir})"
+    state = f"compiled ({len(MODULES)} modules, {len(KERNELS)} C kernels, from {build_dir})"
     return state

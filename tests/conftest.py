@@ -93,3 +93,19 @@ def plan_in_process(monkeypatch, argv: list[str], problem_text: str) -> tuple[in
         stdout.flush()
         stderr.flush()
     return status, stdout.buffer.getvalue().decode(), stderr.buffer.getvalue().decode()
+
+
+def built_kernel(name: str):
+    """The C kernel module ``name`` of the compiled build, loaded by its path (the test
+    process runs interpreted), or None when the build is not fresh. Loading registers
+    it in ``sys.modules``; it is taken out again, so it is in use only when asked."""
+    import importlib.util
+    from rrt_startup import compiled
+    if compiled.why_not_fresh(compiled.BUILD_DIR) is not None:
+        return None
+    path = os.path.join(compiled.BUILD_DIR, *name.split(".")) + compiled.extension_suffix()
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    sys.modules.pop(name, None)
+    return module

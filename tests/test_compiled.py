@@ -237,7 +237,7 @@ def test_run_sh_stats_says_which_ran(disable):
     assert done.returncode == 0, done.stderr
     expected = "rrt_cli build: interpreted: RRT_INTERPRETED is set" if disable else (
         f"rrt_cli build: compiled ({len(compiled.MODULES)} modules, "
-        f"{len(compiled.KERNELS)} C kernel, from {compiled.BUILD_DIR})")
+        f"{len(compiled.KERNELS)} C kernels, from {compiled.BUILD_DIR})")
     assert expected in done.stderr.splitlines()
 
 

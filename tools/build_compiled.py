@@ -113,7 +113,7 @@ def main() -> int:
         print(f"build_compiled: {error}", file=sys.stderr)
         return 1
     print(f"build_compiled: {len(compiled.MODULES)} modules and {len(compiled.KERNELS)} C "
-          f"kernel compiled into {target}",
+          f"kernels compiled into {target}",
           file=sys.stderr)
     return 0
 

@@ -59,9 +59,18 @@ class ControlSamplingSteering:
         self.sample_control: Callable[[random.Random], Any] = si.sample_control
         self.propagate_valid: Callable[[Any, Any], Any] = si.propagate_valid
         self.closeness: Callable[[Any, Any], float] = si.closeness
+        self.native: Optional[Callable[[Any, Any, random.Random], Any]] = (
+            si.native_extension(controls_per_extension))
+        """This extension in C where the space information has it (the grid ships with
+        the compiled build: the same draws and floats), else None."""
 
     def extend(self, state: tuple[float, ...], target: tuple[float, ...],
                rng: random.Random) -> Any:
+        """Of ``controls_per_extension`` sampled controls, the valid one whose end is
+        nearest the target: (end, control), or None."""
+        native = self.native
+        if native is not None:
+            return native(state, target, rng)
         best = None
         best_d2 = math.inf
         sample_control, propagate_valid, closeness = (self.sample_control,

@@ -8,9 +8,7 @@ do. Skipped where the compiled build is not in use."""
 from __future__ import annotations
 
 import contextlib
-import importlib.util
 import math
-import os
 import random
 import sys
 
@@ -22,27 +20,13 @@ from planning_core.worlds.body_tests import (BodyTest, clearance, native_kernel,
                                              placed_coordinates)
 from planning_core.worlds.continuous import ContinuousWorld
 from planning_core.worlds.shapes import body_polygon
-from tests.conftest import property_pair
+from tests.conftest import built_kernel, property_pair
 from tests.planning_core.worlds.test_body_tests import (OBSTACLES, WALKS, check_random_walks,
                                                         poses_of, random_poses)
 from tests.planning_core.worlds.test_continuous_world import BOX
 
 NAME = "planning_core.worlds._body_kernel"
-
-
-def _load_kernel():
-    """The built kernel module, loaded by its path (this process runs interpreted)."""
-    if compiled.why_not_fresh(compiled.BUILD_DIR) is not None:
-        return None
-    path = os.path.join(compiled.BUILD_DIR, *NAME.split(".")) + compiled.extension_suffix()
-    spec = importlib.util.spec_from_file_location(NAME, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    sys.modules.pop(NAME, None)  # loading an extension registers it: in use only when asked
-    return module
-
-
-KERNEL = _load_kernel()
+KERNEL = built_kernel(NAME)
 
 
 def kernel_module():
