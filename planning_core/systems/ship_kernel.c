@@ -132,19 +132,27 @@ static int read_floats(PyObject *sequence, double *out, Py_ssize_t count, Py_ssi
     return 0;
 }
 
+/* 0 when k is initialised and called with arity arguments; else -1 with an exception
+   (usage says how to call it). */
+static int callable(const ShipKernel *k, Py_ssize_t nargs, Py_ssize_t arity, const char *usage)
+{
+    if (k->cells == NULL) {
+        PyErr_SetString(PyExc_RuntimeError, "ShipKernel: not initialised");
+        return -1;
+    }
+    if (nargs != arity) {
+        PyErr_SetString(PyExc_TypeError, usage);
+        return -1;
+    }
+    return 0;
+}
+
 static PyObject *kernel_propagate_while(ShipKernel *k, PyObject *const *args, Py_ssize_t nargs)
 {
     double start[4], control[2], end[1][4];
     int ok;
-    if (k->cells == NULL) {
-        PyErr_SetString(PyExc_RuntimeError, "ShipKernel: not initialised");
-        return NULL;
-    }
-    if (nargs != 2) {
-        PyErr_SetString(PyExc_TypeError, "ShipKernel.propagate_while(state, control)");
-        return NULL;
-    }
-    if (read_floats(args[0], start, 4, 4, "a state") < 0
+    if (callable(k, nargs, 2, "ShipKernel.propagate_while(state, control)") < 0
+        || read_floats(args[0], start, 4, 4, "a state") < 0
         || read_floats(args[1], control, 2, 2, "a control") < 0)
         return NULL;
     if (isinf(control[0])) { /* math.cos(inf) */
@@ -173,15 +181,8 @@ static PyObject *kernel_extend(ShipKernel *k, PyObject *const *args, Py_ssize_t 
 {
     double start[4], target[2], best[4], best_control[2], best_d2 = INFINITY;
     int found = 0;
-    if (k->cells == NULL) {
-        PyErr_SetString(PyExc_RuntimeError, "ShipKernel: not initialised");
-        return NULL;
-    }
-    if (nargs != 3) {
-        PyErr_SetString(PyExc_TypeError, "ShipKernel.extend(state, target, rng)");
-        return NULL;
-    }
-    if (read_floats(args[0], start, 4, 4, "a state") < 0
+    if (callable(k, nargs, 3, "ShipKernel.extend(state, target, rng)") < 0
+        || read_floats(args[0], start, 4, 4, "a state") < 0
         || read_floats(args[1], target, 2, PY_SSIZE_T_MAX, "a target") < 0)
         return NULL;
     for (Py_ssize_t first = 0; first < k->count; first += LANES) {
