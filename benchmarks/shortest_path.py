@@ -153,13 +153,16 @@ def _feasible_length(problem: Problem, obstacles: _OpenObstacles) -> float:
     return length
 
 
-def shortest_path(problem: Problem) -> ShortestPath | None:
-    """The shortest path from start to goal, or None when the goal is unreachable."""
+def shortest_path(problem: Problem, max_corners: float = math.inf) -> ShortestPath | None:
+    """The shortest path from start to goal, or None when the goal is unreachable or the
+    map has more than ``max_corners`` corners (not searched)."""
     obstacles = _OpenObstacles(problem)
+    corners, quadrants = _corner_vertices(obstacles)
+    if len(corners) > max_corners:
+        return None
     # Relative slack: the optimum may equal the bound up to rounding. (No bound
     # when the chain of cells finds no way: a diagonal pinch may still pass.)
     bound = _feasible_length(problem, obstacles) * (1 + 1e-9)
-    corners, quadrants = _corner_vertices(obstacles)
     points = [problem.start, problem.goal, *corners]
     point_list = [(float(x), float(y)) for x, y in points]  # plain floats for the exact test
     xs = np.array([p[0] for p in points], dtype=float)
@@ -220,12 +223,8 @@ def shortest_lengths(problem_ids: Iterable[str],
     lengths = {}
     for path in suite_files(directory):
         name = problem_id(path)
-        if name not in wanted:
-            continue
-        problem = parse_problem(path.read_text())
-        if len(_corner_vertices(_OpenObstacles(problem))[0]) > MAX_CORNERS:
-            continue
-        found = shortest_path(problem)
-        if found is not None:
-            lengths[name] = found.length
+        if name in wanted:
+            found = shortest_path(parse_problem(path.read_text()), MAX_CORNERS)
+            if found is not None:
+                lengths[name] = found.length
     return lengths
