@@ -16,7 +16,10 @@ extent, a blocked motion cut short ``wall_clearance`` before its first invalid s
 The new state's ``k = ceil(rewire_factor e (1 + 1/d) log(n + 1))`` nearest nodes then
 - *choose its parent*: the one through which its cost-to-come is least and whose
   motion to it is free (tried in order of that cost until one is: OMPL's delayed
-  collision checking);
+  collision checking); then, with ``ancestor_hops``, that parent's parent in its
+  place, and so on up, while the motion from it is free and cheaper (Theta*'s
+  any-angle parent; a departure from the paper: paths pull taut round the corners
+  their nodes pass, and in open space every node hangs from the start);
 - *are rewired*: each whose cost-to-come falls by going through the new state, and
   whose motion from it is free, takes it as parent; its subtree's costs fall too.
 A cost is a path's length: ``si.distance`` of each motion, measured and checked in
@@ -83,6 +86,10 @@ class RRTStarParams:
     """After the first solution, the share of targets on the goal region's rim where
     the region is a ball (``si.goal_center``), where a shortest path from outside it
     ends: a uniform state drawn in toward the centre to the tolerance. 0: none."""
+    ancestor_hops: bool = True
+    """A new node's parent passes to the parent's parent, and on up its chain, while
+    that motion is free and cheaper (Theta*'s any-angle parent; a departure from the
+    paper). False: the paper's choice among the neighbours alone."""
     partial_extension: bool = True
     """A blocked extension goes as far as it is free instead of adding nothing."""
     min_extension: float = 0.01
@@ -180,6 +187,7 @@ class StarSearch:
         self.guide: Optional[Guide] = None
         """The nodes not yet guided from (:meth:`begin_guide`; until the first solution)."""
         self.goal_bias, self.rewire_factor = params.goal_bias, params.rewire_factor
+        self.hops = params.ancestor_hops
         self.frontier_share = params.frontier_targets
         self.frontier = si.frontier() if self.frontier_share > 0.0 else None
         if self.frontier is not None:
@@ -291,12 +299,29 @@ class StarSearch:
         near_step = distance(states[near], new)
         through_near = costs[near] + near_step
         offers = sorted((costs[n] + distance(states[n], new), n) for n in neighbours)
+        parent, step = near, near_step
         for cost, candidate in offers:
             if cost >= through_near or candidate == near:
                 break
             if self.first_hit(states[candidate], new) is None:
-                return candidate, distance(states[candidate], new)
-        return near, near_step
+                parent, step = candidate, distance(states[candidate], new)
+                break
+        return self._hop(parent, step, new) if self.hops else (parent, step)
+
+    def _hop(self, parent: int, step: float, new: State) -> tuple[int, float]:
+        """Up ``parent``'s chain while the motion from the next ancestor to ``new`` is
+        free and makes ``new`` cheaper (Nash et al. 2007, "Theta*: Any-angle path
+        planning on grids", AAAI, with every ancestor and not only the grandparent)."""
+        tree, distance = self.tree, self.distance
+        parents, states, costs = tree.parents, tree.states, tree.costs
+        up = parents[parent]
+        while up >= 0:
+            up_step = distance(states[up], new)
+            if costs[up] + up_step >= costs[parent] + step \
+                    or self.first_hit(states[up], new) is not None:
+                break
+            parent, step, up = up, up_step, parents[up]
+        return parent, step
 
     def _rewire(self, node: int, neighbours: list[int]) -> bool:
         """Hang each neighbour from ``node`` when that is cheaper and free; whether any."""

@@ -125,7 +125,7 @@ class Recorder:
 
 
 @pytest.mark.parametrize("problem, iterations", [("space-2", 400), ("arm2-pair1", 400),
-                                                 ("rigid2-scene3", 1500)])
+                                                 ("rigid2-scene3", 4000)])
 def test_rewiring_never_raises_a_cost_and_costs_follow_the_tree(problem, iterations):
     setup = setup_of(problem)
     si, rng = setup.si, random.Random(3)
@@ -281,6 +281,53 @@ def test_rim_targets_end_the_answer_on_the_goal_regions_rim(name):
             assert 0.0 < depths[rim, seed] < 1e-8 < depths[0.0, seed], depths
             if problem == "simple-0":
                 assert costs[rim, seed] < costs[0.0, seed], costs
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_ancestor_hops_hang_every_node_from_the_start_in_open_space(name):
+    """course-simple-0 has no blocked cell: with ancestor hops every node hangs from
+    the start and the answer is one straight motion; without, chains grow."""
+    setup, module = setup_of("simple-0"), MODULES[name]
+    for hops in (True, False):
+        result = module.solve(setup.si, optimizing(setup),
+                              StopCondition(60, max_iterations=1000), random.Random(2),
+                              module.Params(ancestor_hops=hops))
+        assert_valid(setup, result)
+        from_start = {parent == setup.pdef.start for parent, _, _ in result.edges}
+        assert (from_start == {True}) == hops and (len(result.path) == 2) == hops
+
+
+def hop_runs(module, setup, pdef, stop):
+    """Per ``ancestor_hops`` setting: iterations, the tree's nodes, the answer's cost."""
+    runs = {}
+    for hops in (True, False):
+        result = module.solve(setup.si, pdef, stop, random.Random(1),
+                              module.Params(ancestor_hops=hops))
+        runs[hops] = (result.stats.iterations, {edge[2] for edge in result.edges},
+                      assert_valid(setup, result).cost)
+    return runs
+
+
+HOP_PROBLEMS = ["space-3", "random-d20-20", "arm2-pair3"]
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+@pytest.mark.parametrize("problem", HOP_PROBLEMS)
+def test_ancestor_hops_change_parents_only(name, problem):
+    """The first solution comes at the same iteration through the same nodes, no
+    longer; RRT*'s uniform draws after it are the same too, and (seed 1, 1500
+    iterations) its answer is shorter."""
+    path = ROOT / "benchmarks" / "problems" / f"{problem}.sw"
+    setup = grid_setup(parse_problem(path.read_text()), "point") if path.exists() \
+        else setup_of(problem)
+    module = MODULES[name]
+    first = hop_runs(module, setup, setup.pdef, StopCondition(60))
+    assert first[True][:2] == first[False][:2] and first[True][2] <= first[False][2]
+    if name == "rrtstar":
+        runs = hop_runs(module, setup, optimizing(setup),
+                        StopCondition(60, max_iterations=1500))
+        assert runs[True][:2] == runs[False][:2]
+        assert runs[True][2] < runs[False][2], runs
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
