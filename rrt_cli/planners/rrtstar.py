@@ -294,7 +294,8 @@ class StarSearch:
 
     def _choose_parent(self, near: int, new: State, neighbours: list[int]) -> tuple[int, float]:
         """The neighbour through which ``new`` is cheapest to reach by a free motion
-        (``near``'s motion is known free) and that motion's cost."""
+        (``near``'s motion is known free), or with ancestor hops the ancestor of it
+        that :meth:`_hop` climbs to, and that motion's cost."""
         states, costs, distance = self.tree.states, self.tree.costs, self.distance
         near_step = distance(states[near], new)
         through_near = costs[near] + near_step
