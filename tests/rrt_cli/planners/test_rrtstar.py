@@ -25,14 +25,17 @@ from tests.conftest import (COURSE_DIR, COURSE_PROBLEMS, ROOT, plan_in_process, 
                             unit_sample)
 from validator.checks import validate_plan
 
-FAMILY = ROOT / "benchmarks" / "problems" / "family"
+SUITE = ROOT / "benchmarks" / "problems"
+FAMILY = SUITE / "family"
 MODULES = {"rrtstar": rrtstar, "informed": informed}
 
 
 def setup_of(name: str):
-    """A course map's point setup (``space-2``) or a family problem's (``arm2-pair1``)."""
-    if (COURSE_DIR / f"{name}.sw").exists():
-        return grid_setup(parse_problem((COURSE_DIR / f"{name}.sw").read_text()), "point")
+    """A grid map's point setup, a course map's (``space-2``) or the suite's
+    (``maze-50``), or a family problem's (``arm2-pair1``)."""
+    for folder in (COURSE_DIR, SUITE):
+        if (folder / f"{name}.sw").exists():
+            return grid_setup(parse_problem((folder / f"{name}.sw").read_text()), "point")
     return kinoplan_setup(parse_kinoplan((FAMILY / f"{name}.kp").read_text()))
 
 
@@ -220,8 +223,7 @@ def test_both_planners_draw_alike_until_the_first_solution(problem):
 
 
 def test_frontier_targets_find_a_maze_path_that_uniform_targets_miss_in_as_many_iterations():
-    setup = grid_setup(parse_problem((ROOT / "benchmarks" / "problems" / "maze-50.sw")
-                                     .read_text()), "point")
+    setup = setup_of("maze-50")
     found = [rrtstar.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=3000),
                            random.Random(1),
                            rrtstar.Params(frontier_targets=share, guided_targets=0.0)).solved
@@ -317,10 +319,7 @@ def test_ancestor_hops_change_parents_only(name, problem):
     """The first solution comes at the same iteration through the same nodes, no
     longer; RRT*'s uniform draws after it are the same too, and (seed 1, 1500
     iterations) its answer is shorter."""
-    path = ROOT / "benchmarks" / "problems" / f"{problem}.sw"
-    setup = grid_setup(parse_problem(path.read_text()), "point") if path.exists() \
-        else setup_of(problem)
-    module = MODULES[name]
+    setup, module = setup_of(problem), MODULES[name]
     first = hop_runs(module, setup, setup.pdef, StopCondition(60))
     assert first[True][:2] == first[False][:2] and first[True][2] <= first[False][2]
     if name == "rrtstar":
@@ -337,8 +336,7 @@ def test_guided_targets_lead_down_the_free_cells(name):
     map before they reach the far corner). The family's worlds measure no such
     distance: no guided draws there (outputs as with none)."""
     module = MODULES[name]
-    setup = grid_setup(parse_problem(
-        (ROOT / "benchmarks" / "problems" / "random-d20-100.sw").read_text()), "point")
+    setup = setup_of("random-d20-100")
     solved = []
     for share in (rrtstar.RRTStarParams().guided_targets, 0.0):
         results = [module.solve(setup.si, setup.pdef, StopCondition(60, max_iterations=1500),
