@@ -131,6 +131,14 @@ print(why_not_fresh(full=True) or "")' 2>&1) || why="the check failed: $why"
     fi
 }
 
+# rrt-validator's launcher (tools/build_launcher.py), which starts the planner before the
+# interpreter starts; without a C compiler the validator starts it itself, a little later.
+build_launcher() {
+    if ! .venv/bin/python tools/build_launcher.py >>"$LOG" 2>&1; then
+        step "note: rrt-validator's launcher was not built (see $LOG); it starts the planner itself"
+    fi
+}
+
 # The bytecode ./run.sh and ./rrt-validator read: .build/pycache, every module of the
 # checkout's packages and of what they import, built afresh in a new folder (nothing already
 # there is read), each file checked whole, then renamed into place. The launchers write
@@ -196,5 +204,6 @@ fi
 [ "$target" = all ] && compile_hot_modules
 [ "$target" = all ] && install_test_tools
 [ "$target" = all ] && install_ompl_cpp
+build_launcher
 compile_bytecode
 exit 0

@@ -11,9 +11,10 @@ only from the checkout and the interpreter's own install.
 
 from __future__ import annotations
 
+import os
 import sys
 
-from rrt_startup.bytecode import install
+from rrt_startup.bytecode import ROOT, content_key, install
 
 
 class OnFirstUse(type(sys)):  # a module type (types.ModuleType, without importing types)
@@ -68,6 +69,9 @@ def validator() -> None:
     ends by :func:`exit_now`."""
     install()
     defer_dataclasses_imports()
+    if sys.argv[1:2] and sys.argv[1].startswith("--rrt-validator-launched="):
+        from validator.launched import receive  # the planner validator/launch.c started
+        receive(sys.argv.pop(1), launcher_key())
     picture = draws_picture(sys.argv[1:])
     if picture:
         import site
@@ -81,6 +85,16 @@ def validator() -> None:
         exit_now(done.code)
 
 
+def launcher_key() -> str:
+    """The content key of the launcher's source (validator/launch.c), which a launcher
+    built from it carries in its token ("" when the source is missing)."""
+    try:
+        with open(os.path.join(ROOT, "validator", "launch.c"), "rb") as source:
+            return content_key(source.read()).hex()
+    except OSError:
+        return ""
+
+
 def exit_now(code: object) -> None:
     """End the process as ``raise SystemExit(code)`` would, without the interpreter's
     tear-down of every module (milliseconds a grader waits for on every run): the
@@ -88,7 +102,6 @@ def exit_now(code: object) -> None:
     CPython's), then ``os._exit``. Only for a process with nothing else to finish: no
     other thread, no file left open for writing (the validator without a picture)."""
     import atexit
-    import os
     if code is None:
         status = 0
     elif isinstance(code, int):

@@ -255,7 +255,9 @@ def test_a_second_run_compiles_nothing(scratch, launcher, args, status, interpre
     """Every module a launcher imports, those CPython loads before the checked loader
     included, has its bytecode after one run: the next compiles no source."""
     copy = checkout_copy(scratch)
-    code = (ROOT / launcher).read_text().split("-c '", 1)[1].split("\n' ", 1)[0]
+    script = (ROOT / launcher).read_text()
+    code = (script.split("code='", 1)[1].split("\n'\n", 1)[0] if "code='" in script
+            else script.split("-c '", 1)[1].split("\n' ", 1)[0])  # the script's own start
     env = dict(os.environ, RRT_INTERPRETED=interpreted)
     for run in ("first", "second"):
         with open(SPACE1, "rb") as problem:

@@ -34,6 +34,7 @@ from cli_common import (EXIT_USAGE, VEHICLE_DEFAULTS, VEHICLE_SWITCHES, ParserOn
 from planning_core.problem import Problem
 from planning_core.problem_text import ProblemFormatError, format_problem
 from planning_core.vehicles import Vehicle
+from validator import launched
 from validator.run_planner import (DEFAULT_OUTPUT_CAP, DEFAULT_TIMEOUT, PlannerRun,
                                    StartedPlanner, start_planner)
 
@@ -173,7 +174,8 @@ def report_json(vehicle: Vehicle | str, strict: bool, report: ValidationReport |
                     "start_error": run.start_error or None, "exit_code": run.exit_code,
                     "signal": run.signal, "timed_out": run.timed_out,
                     "wall_time": round(run.wall_time, 6), "output_bytes": len(run.output),
-                    "output_cap_exceeded": run.output_cap_exceeded},
+                    "output_cap_exceeded": run.output_cap_exceeded,
+                    "started_by": "launcher" if run.launched else "validator"},
         "solver_messages": solver_messages(run),
         "pdf": pdf,
     }
@@ -321,7 +323,9 @@ def _summary(run: PlannerRun, report: ValidationReport | None, pdf: str | None) 
 def _read_problem(parser, args):
     """``(problem, its text for the planner)``, or None after one line on stderr (a
     bad problem: exit 2); vehicle flags with a kinoplan problem are a usage error."""
-    text = read_problem_text_from_stdin(PROG)
+    given = launched.problem()  # the launcher's sealed copy of stdin, if it read it
+    text = read_problem_text_from_stdin(PROG) if given is None else given.decode(
+        "utf-8", errors="replace")
     if text is None:
         return None
     try:
@@ -354,8 +358,9 @@ def _run(command: list[str], problem_bytes: bytes, timeout: float, prepare):
     """The planner's run and ``prepare()``'s value: the planner is started first,
     ``prepare`` runs while it does (the timeout counts both), and on any exception
     the planner and everything it started are killed."""
-    started = start_planner(command, problem_bytes, timeout=timeout,
-                            output_cap=DEFAULT_OUTPUT_CAP)
+    started = (launched.take_over(command, problem_bytes, timeout, DEFAULT_OUTPUT_CAP)
+               or start_planner(command, problem_bytes, timeout=timeout,
+                                output_cap=DEFAULT_OUTPUT_CAP))
     if not isinstance(started, StartedPlanner):  # it could not be started
         return started, prepare()
     try:
@@ -440,7 +445,10 @@ def entry_point() -> None:
         except (AttributeError, ValueError):
             pass
     try:
-        status = main()
+        try:
+            status = main()
+        finally:
+            launched.discard()  # the launcher's planner, when the validator did not run it
     except KeyboardInterrupt:  # Ctrl-C: _run has killed the planner's group
         say(f"{PROG}: interrupted")
         status = EXIT_INTERRUPTED

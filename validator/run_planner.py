@@ -60,7 +60,7 @@ class PlannerRun:
                  output_cap_exceeded: bool = False, output_cap: int = DEFAULT_OUTPUT_CAP,
                  timeout: float = DEFAULT_TIMEOUT, wall_time: float = 0.0,
                  stderr_bytes: int = 0, stderr_cap: int = DEFAULT_STDERR_CAP,
-                 stderr_tail: bytes = b"") -> None:
+                 stderr_tail: bytes = b"", launched: bool = False) -> None:
         self.command = command
         self.output = output            # its stdout, at most ``output_cap`` bytes
         self.started = started          # False: it could not be started (``start_error``)
@@ -75,6 +75,7 @@ class PlannerRun:
         self.stderr_bytes = stderr_bytes  # what it wrote on stderr; ``stderr_cap`` passed on
         self.stderr_cap = stderr_cap
         self.stderr_tail = stderr_tail  # its last STDERR_TAIL bytes there (for the picture)
+        self.launched = launched        # started by the launcher (validator/launch.c)
 
     @property
     def ran_to_completion(self) -> bool:
@@ -128,15 +129,40 @@ def start_planner(command: Sequence[str], stdin_data: bytes, timeout: float = DE
         containment.close()
         return PlannerRun(command, b"", False, start_error=str(error), output_cap=output_cap,
                           timeout=timeout, stderr_cap=stderr_cap)
-    started = StartedPlanner(command, process, containment, began, timeout, stderr_cap)
+    return _pumped(StartedPlanner(command, process, containment, began, timeout, stderr_cap),
+                   stdin_data, output_cap, stderr)
+
+
+def _pumped(started: StartedPlanner, stdin_data: bytes, output_cap: int,
+            stderr: _StderrSink) -> StartedPlanner:
+    """``started`` with its containment told the pid and its pipes' pump, given as
+    much of ``stdin_data`` as its pipe takes at once (stopped on any failure)."""
     try:
-        containment.started(process.pid)
-        started.pump = _Pump(process, stdin_data, output_cap, stderr)
+        started.containment.started(started.process.pid)
+        started.pump = _Pump(started.process, stdin_data, output_cap, stderr)
         started.pump.write_now()
     except BaseException:
         started.stop()
         raise
     return started
+
+
+def adopt_planner(command: tuple[str, ...], pid: int, stdin: int, stdin_rest: bytes,
+                  stdout: int, stderr: int, began: float, timeout: float,
+                  output_cap: int = DEFAULT_OUTPUT_CAP, stderr_cap: int = DEFAULT_STDERR_CAP,
+                  stderr_fd: int = 2) -> StartedPlanner:
+    """:func:`start_planner`'s value for a planner validator/launch.c started as
+    ``_spawn`` would (our child, its own session, its parent-death signal set, we a
+    child subreaper since before it started) at ``began`` (``time.monotonic()``'s
+    clock): its pipes' fds (``stdin`` -1 when closed), ``stdin_rest`` what is still
+    to be written to it (validator/launched.py)."""
+    if sys.stderr is not None:
+        sys.stderr.flush()
+    sink = _StderrSink(stderr_cap, stderr_fd)
+    started = StartedPlanner(command, _Child(pid, stdin, stdout, stderr),
+                             _Containment(launched=pid), began, timeout, stderr_cap)
+    started.launched = True
+    return _pumped(started, stdin_rest, output_cap, sink)
 
 
 class _Child:
@@ -294,6 +320,7 @@ class StartedPlanner:
         self.began, self.timeout, self.stderr_cap = began, timeout, stderr_cap
         self.pump: _Pump | None = None
         self.stopped = False
+        self.launched = False  # started by the launcher (adopt_planner)
 
     def finish(self) -> PlannerRun:
         process, pump = self.process, self.pump
@@ -312,7 +339,7 @@ class StartedPlanner:
                           output_cap_exceeded=pump.cap_exceeded, output_cap=pump.output_cap,
                           timeout=self.timeout, wall_time=wall,
                           stderr_bytes=pump.stderr.total, stderr_cap=self.stderr_cap,
-                          stderr_tail=bytes(pump.stderr.tail))
+                          stderr_tail=bytes(pump.stderr.tail), launched=self.launched)
 
     def stop(self) -> None:
         """Kill the planner's group and what left it, reap the planner, close the
@@ -371,13 +398,14 @@ class _Pump:
         self.stdin_fd, self.stdout_fd = process.stdin, process.stdout
         self.stderr_fd = process.stderr
         for fd in (self.stdin_fd, self.stdout_fd, self.stderr_fd):
-            os.set_blocking(fd, False)
+            if fd >= 0:  # stdin -1: closed already (the launcher wrote it all)
+                os.set_blocking(fd, False)
         self.selector = _Poller()
         self.selector.register(self.stdout_fd, select.POLLIN)
         self.selector.register(self.stderr_fd, select.POLLIN)
         self.open_outputs = {self.stdout_fd, self.stderr_fd}
-        self.stdin_open = True
-        if self.to_write:
+        self.stdin_open = self.stdin_fd >= 0
+        if self.to_write and self.stdin_open:
             self.selector.register(self.stdin_fd, select.POLLOUT)
         else:
             self.close_stdin()
@@ -562,15 +590,18 @@ class _Containment:
     parent-death signal, and kills what the planner left behind (see the module's
     docstring). Does nothing where prctl or /proc is missing."""
 
-    def __init__(self) -> None:
+    def __init__(self, launched: int | None = None) -> None:
+        """``launched``: the pid of a planner the launcher started (validator/launch.c):
+        our child already, we its subreaper since before it started, and every other
+        child of ours its descendant."""
         self.parent = os.getpid()
         self.prctl = _load_prctl()
         self.planner: int | None = None
         self.since = 0  # the planner's start time, in clock ticks since boot
-        table = _proc_table()
+        table = _proc_table() if launched is None else None
         self.before = frozenset(pid for pid, (ppid, _, _) in (table or {}).items()
                                 if ppid == self.parent)
-        self.was_subreaper = _get_subreaper(self.prctl)
+        self.was_subreaper = launched is None and _get_subreaper(self.prctl)
         if self.prctl is not None and not self.was_subreaper:
             self.prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
 

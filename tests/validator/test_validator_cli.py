@@ -54,7 +54,8 @@ def test_help_exits_0_and_lists_every_flag(tmp_path):
 ])
 def test_bad_problem_exits_2_with_one_line(problem, where, tmp_path):
     marker = tmp_path / "ran"
-    done = run_validator(["--", "touch", str(marker)], problem.encode("latin-1"), tmp_path)
+    done = run_validator(["--", "touch", str(marker)], problem.encode("latin-1"), tmp_path,
+                         pipe=True)  # (in a file: test_validator_launcher.py)
     assert done.returncode == 2 and done.stdout == b""
     lines = done.stderr.decode().splitlines()
     assert len(lines) == 1 and lines[0].startswith("rrt-validator: bad problem: ")

@@ -46,7 +46,9 @@ def last_error(done: subprocess.CompletedProcess) -> str:
 ])
 def test_bad_problems_exit_2_before_the_planner_runs(problem, where, tmp_path):
     marker = tmp_path / "ran"
-    done = run_validator(["--", "touch", str(marker)], problem, tmp_path)
+    # On a pipe (the validator starts the planner; in a file the launcher has started it
+    # already, and it is stopped: test_validator_launcher.py).
+    done = run_validator(["--", "touch", str(marker)], problem, tmp_path, pipe=True)
     assert done.returncode == 2 and done.stdout == b"" and not marker.exists()
     lines = done.stderr.decode().splitlines()
     assert len(lines) == 1 and lines[0].startswith("rrt-validator: bad problem: ")
@@ -88,7 +90,8 @@ def test_hostile_numbers_in_planner_output_fail_check_1(output, tmp_path):
 @pytest.mark.parametrize("path", ["", "/proc/no-such.pdf", "missing-folder/x.pdf", "."])
 def test_an_unwritable_pdf_is_a_usage_error_before_the_planner_runs(path, tmp_path):
     marker = tmp_path / "ran"
-    done = run_validator(["-o", path, "--", "touch", str(marker)], SPACE0, tmp_path)
+    done = run_validator(["-o", path, "--", "touch", str(marker)], SPACE0, tmp_path,
+                         pipe=True)  # (in a file: test_validator_launcher.py)
     assert done.returncode == 2 and done.stdout == b"" and not marker.exists()
     assert last_error(done).startswith(f"rrt-validator: error: -o {path!r}: cannot write")
     assert os.listdir(tmp_path) == []   # the probe left nothing behind
@@ -180,7 +183,8 @@ def test_the_launcher_ends_as_the_module_does(command, status, tmp_path):
 @pytest.mark.parametrize("value", ["\uff14", "\u0664", "1_0", "9" * 5000, "-1"])
 def test_timeout_takes_ascii_positive_numbers_only(value, tmp_path):
     marker = tmp_path / "ran"
-    done = run_validator(["-timeout", value, "--", "touch", str(marker)], SPACE0, tmp_path)
+    done = run_validator(["-timeout", value, "--", "touch", str(marker)], SPACE0, tmp_path,
+                         pipe=True)  # (in a file: test_validator_launcher.py)
     assert done.returncode == 2 and not marker.exists()
     line = last_error(done)
     assert line.startswith("rrt-validator: error: argument -timeout: ") and len(line) < 200

@@ -59,7 +59,8 @@ def test_o_writes_the_format_its_extension_names(extension, plain_verdict, tmp_p
 
 def test_an_unknown_extension_is_exit_2_with_the_list_and_no_run(tmp_path):
     marker = tmp_path / "ran"
-    done = run_validator(["-o", "picture.jpg", "--", "touch", str(marker)], SPACE0, tmp_path)
+    done = run_validator(["-o", "picture.jpg", "--", "touch", str(marker)], SPACE0, tmp_path,
+                         pipe=True)  # (in a file: test_validator_launcher.py)
     assert done.returncode == 2 and done.stdout == b"" and not marker.exists()
     assert done.stderr.decode().splitlines()[-1] == (
         "rrt-validator: error: -o 'picture.jpg': unknown picture format '.jpg': use one of "

@@ -6,6 +6,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -64,12 +65,22 @@ def load_problem(name: str):
 
 
 def run_validator(args: list[str], problem_text: str | bytes, cwd: Path,
-                  timeout: float = 60) -> subprocess.CompletedProcess:
-    """``./rrt-validator ARGS`` as a user runs it, with the problem on stdin, in ``cwd``
-    (for tree-viz.pdf)."""
+                  timeout: float = 60, pipe: bool = False) -> subprocess.CompletedProcess:
+    """``./rrt-validator ARGS < problem.sw`` as a user runs it, in ``cwd`` (for
+    tree-viz.pdf): the problem in a file of its own (so the launcher starts the
+    planner, where built: validator/launch.c), or on a pipe (``pipe``: the validator
+    starts it)."""
     data = problem_text.encode() if isinstance(problem_text, str) else problem_text
-    return subprocess.run([str(ROOT / "rrt-validator"), *args], input=data,
-                          capture_output=True, timeout=timeout, cwd=cwd)
+    command = [str(ROOT / "rrt-validator"), *args]
+    if pipe:
+        return subprocess.run(command, input=data, capture_output=True, timeout=timeout,
+                              cwd=cwd)
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "problem.sw"
+        path.write_bytes(data)
+        with open(path, "rb") as problem:
+            return subprocess.run(command, stdin=problem, capture_output=True,
+                                  timeout=timeout, cwd=cwd)
 
 
 def python_planner(code: str) -> list[str]:
