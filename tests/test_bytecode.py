@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import script_code
 from tests.test_launch_scripts import SPACE1, checkout_copy, launch, python_on_path
 from validator.checks import INVALID_VERDICT
 
@@ -255,9 +256,7 @@ def test_a_second_run_compiles_nothing(scratch, launcher, args, status, interpre
     """Every module a launcher imports, those CPython loads before the checked loader
     included, has its bytecode after one run: the next compiles no source."""
     copy = checkout_copy(scratch)
-    script = (ROOT / launcher).read_text()
-    code = (script.split("code='", 1)[1].split("\n'\n", 1)[0] if "code='" in script
-            else script.split("-c '", 1)[1].split("\n' ", 1)[0])  # the script's own start
+    code = script_code(launcher)
     env = dict(os.environ, RRT_INTERPRETED=interpreted)
     for run in ("first", "second"):
         with open(SPACE1, "rb") as problem:

@@ -14,7 +14,7 @@ import pytest
 from planning_core.problem_text import parse_problem
 from planning_core.vehicles import Vehicle
 from rrt_cli import cli
-from tests.conftest import COURSE_DIR, ROOT, plan_in_process
+from tests.conftest import COURSE_DIR, ROOT, plan_in_process, script_code
 from validator.checks import validate_output
 
 SPACE1 = COURSE_DIR / "space-1.sw"
@@ -78,8 +78,7 @@ atexit.register(report)
 
 def run_sh_start_loads(*flags: str) -> set[str]:
     """Which of the probe's modules ``./run.sh -seed 1 [flags] < space-1`` imported."""
-    script = (ROOT / "run.sh").read_text()
-    code = script.split("-c '", 1)[1].split("\n' ", 1)[0]  # run.sh's own start
+    code = script_code("run.sh")
     with open(SPACE1, "rb") as problem:
         done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", PROBE + code, str(ROOT),
                                "-seed", "1", *flags], stdin=problem, capture_output=True, timeout=60)

@@ -20,7 +20,7 @@ import pytest
 
 from validator.checks import INVALID_VERDICT, VALID_VERDICT
 from validator.run_planner import DEFAULT_STDERR_CAP, run_planner
-from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone, python_planner,
+from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone_within, python_planner,
                               run_validator)
 
 SPACE0 = (PROBLEMS / "space-0.sw").read_text()
@@ -61,15 +61,6 @@ def planner_with_daemon(pid_file: Path) -> list[str]:
             f"wait_for({str(pid_file)!r})\n"
             f"sys.stdout.write({VALID_POINT_PLAN!r})\n")
     return python_planner(code)
-
-
-def gone_within(pid: int, seconds: float) -> bool:
-    deadline = time.monotonic() + seconds
-    while not gone(pid):
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.02)
-    return True
 
 
 @pytest.fixture

@@ -17,8 +17,9 @@ from pathlib import Path
 import pytest
 
 from planning_core.problem_text import format_problem, parse_problem
-from validator.checks import INVALID_VERDICT, VALID_VERDICT
-from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone, python_planner,
+from validator.checks import INVALID_VERDICT
+from tests.conftest import script_code
+from validator_testlib import (PROBLEMS, ROOT, VALID_POINT_PLAN, gone_within, python_planner,
                               run_validator)
 
 LAUNCHER = ROOT / ".build" / "launcher" / "rrt-validator-launch"
@@ -107,16 +108,6 @@ def wait_for(path: Path, seconds: float = 20) -> int:
     return int(path.read_text())
 
 
-def gone_within(pid: int, seconds: float) -> bool:
-    deadline = time.monotonic() + seconds
-    while not gone(pid):
-        if time.monotonic() > deadline:
-            os.kill(pid, signal.SIGKILL)
-            return False
-        time.sleep(0.02)
-    return True
-
-
 @pytest.mark.parametrize("flags, text", [
     (["-noviz", "-ugrad", "-grad"], SPACE0), (["-o", "tree.unknown"], SPACE0),
     (["-noviz", "-timeout", "-1"], SPACE0), (["-noviz", "-h"], SPACE0),
@@ -164,8 +155,7 @@ def test_a_launcher_of_another_source_is_not_taken_over(tmp_path):
     stale = tmp_path / "stale-launch"
     subprocess.run(["cc", "-O2", '-DRRT_LAUNCH_KEY="0000000000000000"', "-o", str(stale),
                     str(ROOT / "validator" / "launch.c")], check=True)
-    script = (ROOT / "rrt-validator").read_text()
-    code = script.split("code='", 1)[1].split("\n'\n", 1)[0]
+    code = script_code("rrt-validator")
     log = tmp_path / "runs.log"
     problem = tmp_path / "space-0.sw"
     problem.write_text(SPACE0)

@@ -11,6 +11,7 @@ import sys
 
 import pytest
 
+from tests.conftest import script_code
 from validator_testlib import PROBLEMS, ROOT
 
 # Prepended to ./rrt-validator's own start: which of these modules are imported when
@@ -34,8 +35,7 @@ atexit.register(lambda: sys.stderr.write("at exit: %s\\n" % loaded()))
 
 def validator_loads(*args: str) -> tuple[int, list[str], list[str]]:
     """``./rrt-validator ARGS < space-1``'s status and the probe's two lists."""
-    script = (ROOT / "rrt-validator").read_text()
-    code = script.split("code='", 1)[1].split("\n'\n", 1)[0]  # the script's own start
+    code = script_code("rrt-validator")
     with open(PROBLEMS / "space-1.sw", "rb") as problem:
         done = subprocess.run([sys.executable, "-S", "-I", "-B", "-c", PROBE + code, str(ROOT),
                                *args], stdin=problem, capture_output=True, text=True,
