@@ -203,10 +203,12 @@ class DubinsSpaceInformation:
             poses += [(x, y, 0.25 * math.pi), (x, y, 1.25 * math.pi)]
         return poses
 
-    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> "PoseGuide":
-        """Position -> distance to the goal along the free cells (the grid's Dijkstra,
-        once), with poses down the way for RRT*'s guided targets (:class:`PoseGuide`)."""
-        cells = self.world.distance_along_cells(goal.point, stop)
+    def distance_along_free_space(self, goal: Any, stop: Stop = None,
+                                  focus: Optional[Sequence[float]] = None) -> "PoseGuide":
+        """Position -> distance to the goal along the free cells (the grid's Dijkstra;
+        lazy, toward ``focus``'s position, when one is given), with poses down the way
+        for RRT*'s guided targets (:class:`PoseGuide`)."""
+        cells = self.world.distance_along_cells(goal.point, stop, focus)
         return PoseGuide(cells, self.world.printable_point(goal.point))
 
     def prepare_distance_along_free_space(self) -> None:
@@ -238,6 +240,11 @@ class PoseGuide:
     def __call__(self, x: float, y: float) -> float:
         distance: float = self.cells(x, y)
         return distance
+
+    def bound(self, x: float, y: float) -> float:
+        """At most the distance at (x, y), without measuring."""
+        bound: float = self.cells.bound(x, y)
+        return bound
 
     def ahead_of(self, state: Sequence[float], steps: int) -> Optional[tuple[float, float, float]]:
         """The pose ``steps`` sides down the chain from ``state``'s cell, or further

@@ -51,7 +51,8 @@ class FamilySpaceInformation:
         """Empty: no state of a continuous world is singled out."""
         return []
 
-    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> None:
+    def distance_along_free_space(self, goal: Any, stop: Stop = None,
+                                  focus: Any = None) -> None:
         """No cells to walk in a continuous world."""
         return None
 

@@ -126,10 +126,12 @@ class GridGeometricSpaceInformation:
         shortest paths bend (:meth:`GridWorld.convex_corners`)."""
         return self.world.pinch_points() + self.world.convex_corners()
 
-    def distance_along_free_space(self, goal: Any, stop: Stop = None) -> Any:
-        """Position -> distance to the goal along the free cells (Dijkstra, once), with
-        ``ahead_of(state, cells)``: a point that many cells down the way."""
-        return self.world.distance_along_cells(goal.point, stop)
+    def distance_along_free_space(self, goal: Any, stop: Stop = None,
+                                  focus: Optional[Sequence[float]] = None) -> Any:
+        """Position -> distance to the goal along the free cells (Dijkstra; lazy, toward
+        ``focus``'s position, when one is given), with ``ahead_of(state, cells)``: a
+        point that many cells down the way."""
+        return self.world.distance_along_cells(goal.point, stop, focus)
 
     def prepare_distance_along_free_space(self) -> None:
         """Import the Dijkstra's module (the set-up of a planner that guides)."""

@@ -134,10 +134,13 @@ class GeometricSpaceInformation(Protocol):
         convex corners and its corners between two diagonal blocked cells): RRT*'s
         occasional targets once it has a solution."""
 
-    def distance_along_free_space(self, goal: Goal, stop: Stop = None) -> Any:
+    def distance_along_free_space(self, goal: Goal, stop: Stop = None,
+                                  focus: Optional[State] = None) -> Any:
         """Position -> distance to the goal along free space, with ``ahead_of(state,
-        cells)`` (a state that many cells down the way, or None), for RRT*'s guided
-        targets; or None (the family)."""
+        cells)`` (a state that many cells down the way, or None) and ``bound(x, y)`` (at
+        most the distance, without measuring), for the guided targets; or None (the
+        family). With a ``focus`` (a tree's root) the world may measure lazily, the
+        way toward the focus first."""
 
     def prepare_distance_along_free_space(self) -> None:
         """Load the code :meth:`distance_along_free_space` runs: a planner's set-up,

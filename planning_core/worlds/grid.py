@@ -25,7 +25,7 @@ from planning_core.samplers import uniform
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # annotations only: no run imports typing (docs/setup-and-startup.md)
-    from typing import Any, Final, Sequence
+    from typing import Any, Final, Optional, Sequence
 
 SAMPLE_STEP = 0.05
 # How far a point on the map's left or bottom edge (free, not printable) moves inward:
@@ -104,11 +104,14 @@ class GridWorld:
         return not cells_joined(self.problem, (int(a[0]), int(a[1])), (int(b[0]), int(b[1])),
                                 diagonal=True, stop=stop)
 
-    def distance_along_cells(self, goal: Sequence[float], stop: Stop = None):
+    def distance_along_cells(self, goal: Sequence[float], stop: Stop = None,
+                             focus: Optional[Sequence[float]] = None):
         """Position -> distance to the point ``goal`` along the free cells (a
-        heuristic; :class:`~planning_core.worlds.grid_distance.CellDistanceToGoal`)."""
+        heuristic; :class:`~planning_core.worlds.grid_distance.CellDistanceToGoal`),
+        measured lazily toward the position ``focus`` when one is given."""
         from planning_core.worlds.grid_distance import CellDistanceToGoal
-        return CellDistanceToGoal(self.problem, (goal[0], goal[1]), stop=stop)
+        return CellDistanceToGoal(self.problem, (goal[0], goal[1]), stop=stop,
+                                  focus=None if focus is None else (focus[0], focus[1]))
 
     @staticmethod
     def prepare_distance_along_cells() -> None:

@@ -24,7 +24,7 @@ import math
 from array import array
 from typing import Final, Sequence
 
-from planning_core.heap import HeapEntry, heap_pop, heap_push
+from planning_core.heap import HeapEntry, heap_pop, heap_push, heapify
 from planning_core.interrupt import POLL_EVERY, Stop, check
 from planning_core.problem import Problem
 
@@ -41,14 +41,28 @@ _TOWARD_Y: Final = (0.0,) + tuple(-dr / cost for _, dr, cost in _STEPS)
 
 
 class CellDistanceToGoal:
-    """Dijkstra from the goal's cell over the free cells, once, at construction;
-    per cell a double (its distance) and a byte (its way), 9 bytes a cell.
-    ``stop`` is asked every POLL_EVERY heap pops (:mod:`planning_core.interrupt`)."""
+    """Dijkstra from the goal's cell over the free cells; per cell a double (its
+    distance), a byte (its way) and a byte (closed), 10 bytes a cell. ``stop`` is asked
+    every POLL_EVERY heap pops (:mod:`planning_core.interrupt`).
+
+    Without ``focus`` the search runs to the end at construction. With a ``focus``
+    (a position: a tree's root) it is lazy: nothing is measured until a query, and a
+    query whose cell is not closed resumes the search as A* toward that cell (first
+    the focus's) until it is. A* keeps what it closed whatever cell it aims at, so a
+    map whose queried ways are short and open is measured along them only. The
+    heuristic is the octile distance to the aimed-at cell, weighted by
+    ``1 + FOCUS_TIE``: of cells on equally short ways (an open map's straight ways
+    all tie) the one nearer the aim comes first. A closed cell's distance is then the
+    least to within ``FOCUS_TIE`` relative; its chain, and so its value inside the
+    cell, may differ from the eager search's where chains tie."""
+
+    FOCUS_TIE = 1e-6
+    """The lazy search's heuristic weight above 1 (its tie-break; see the class)."""
 
     def __init__(self, problem: Problem, goal: tuple[float, float], unreachable: float = 1e12,
-                 stop: Stop = None):
+                 stop: Stop = None, focus: tuple[float, float] | None = None):
         width, height = problem.width, problem.height
-        blocked = bytes(problem.blocked)  # typed: compiled, the search indexes it natively
+        self._blocked = bytes(problem.blocked)  # typed: compiled, the search indexes it natively
         self.width: int = width
         self.height: int = height
         self.goal = goal
@@ -57,27 +71,40 @@ class CellDistanceToGoal:
         self.goal_cell = int(gy) * width + int(gx)
         self.cell_distance = array("d", [math.inf]) * (width * height)
         self._way = bytearray(width * height)
-        if not blocked[self.goal_cell]:
-            self._search(blocked, stop)
-
-    def _search(self, blocked: bytes, stop: Stop) -> None:
-        width, height = self.width, self.height
-        distance, way = self.cell_distance, self._way
-        distance[self.goal_cell] = 0.0
-        queue: list[HeapEntry] = [HeapEntry(0.0, self.goal_cell)]  # (distance, cell)
-        steps: list[tuple[int, int, float, int]] = [
+        self._closed = bytearray(width * height)
+        self._queue: list[HeapEntry] = []  # (distance, plus the heuristic when lazy; cell)
+        self._steps: list[tuple[int, int, float, int]] = [
             (dc, dr, cost, code) for code, (dc, dr, cost) in enumerate(_STEPS, 1)]
+        self._stop = stop
+        self._lazy = focus is not None
+        self._focus_col: int = int(focus[0]) if focus is not None else 0
+        self._focus_row: int = int(focus[1]) if focus is not None else 0
+        if not self._blocked[self.goal_cell]:
+            self.cell_distance[self.goal_cell] = 0.0
+            self._queue.append(HeapEntry(0.0, self.goal_cell))
+        if not self._lazy:
+            self._settle(-1)
+
+    def _settle(self, until: int) -> None:
+        """Close cells, nearest first, until ``until`` is closed or none is left open
+        (``until`` -1: all of them). The lazy search first turns toward ``until``."""
+        width, height = self.width, self.height
+        if self._lazy and until >= 0:
+            self._refocus(until % width, until // width)
+        blocked, closed = self._blocked, self._closed
+        distance, way, queue = self.cell_distance, self._way, self._queue
+        lazy, stop, steps = self._lazy, self._stop, self._steps
         countdown = POLL_EVERY
         while queue:
             countdown -= 1
             if not countdown:
                 countdown = POLL_EVERY
                 check(stop)
-            entry = heap_pop(queue)
-            d, index = entry.key, entry.order
-            best: float = distance[index]
-            if d > best:
+            index = heap_pop(queue).order
+            if closed[index]:
                 continue
+            closed[index] = 1
+            d: float = distance[index]
             row = index // width
             col = index - row * width
             for dc, dr, cost, code in steps:
@@ -85,20 +112,65 @@ class CellDistanceToGoal:
                 if not (0 <= c < width and 0 <= r < height):
                     continue
                 k = r * width + c
-                if blocked[k]:
+                if blocked[k] or closed[k]:
                     continue
                 if dc and dr and (blocked[row * width + c] or blocked[r * width + col]):
                     continue
-                known: float = distance[k]
-                if d + cost < known:
-                    distance[k] = d + cost
+                reached = d + cost
+                if reached < distance[k]:
+                    distance[k] = reached
                     way[k] = code  # k's chain goes back through index
-                    heap_push(queue, HeapEntry(d + cost, k))
+                    key = reached + self._toward_focus(c, r) if lazy else reached
+                    heap_push(queue, HeapEntry(key, k))
+            if index == until:
+                return
 
-    def __call__(self, x: float, y: float) -> float:
+    def _refocus(self, col: int, row: int) -> None:
+        """Aim the lazy search at cell (col, row): the open cells' keys measured again
+        toward it. Closed cells keep their distances (least whatever the heuristic,
+        A*'s own invariant), so each query walks from what is closed toward its cell."""
+        if (col, row) == (self._focus_col, self._focus_row):
+            return
+        self._focus_col, self._focus_row = col, row
+        width, closed, distance = self.width, self._closed, self.cell_distance
+        open_cells = {entry.order for entry in self._queue if not closed[entry.order]}
+        self._queue = [HeapEntry(distance[k] + self._toward_focus(k % width, k // width), k)
+                       for k in open_cells]
+        heapify(self._queue)
+
+    def _toward_focus(self, col: int, row: int) -> float:
+        """The lazy search's heuristic: the octile distance from the cell to the
+        focus's, weighted by ``1 + FOCUS_TIE``."""
+        dx, dy = abs(col - self._focus_col), abs(row - self._focus_row)
+        octile = max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)
+        return octile * (1.0 + self.FOCUS_TIE)
+
+    def _closed_cell(self, x: float, y: float) -> int:
+        """(x, y)'s cell, closed by the search when it is joined to the goal's; -1
+        outside the map or blocked."""
+        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
+            return -1
+        index = int(y) * self.width + int(x)
+        if self._blocked[index]:
+            return -1
+        if not self._closed[index]:
+            self._settle(index)
+        return index
+
+    def bound(self, x: float, y: float) -> float:
+        """At most :meth:`__call__`'s value, without a search: the octile distance
+        between the cells less the most a position moves inside its cell."""
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
             return self.unreachable
-        index = int(y) * self.width + int(x)
+        dx = abs(int(x) - self.goal_cell % self.width)
+        dy = abs(int(y) - self.goal_cell // self.width)
+        octile = max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)
+        return octile * (1.0 - 1e-9) - _DIAGONAL / 2.0 - 1e-9
+
+    def __call__(self, x: float, y: float) -> float:
+        index = self._closed_cell(x, y)
+        if index < 0:
+            return self.unreachable
         if index == self.goal_cell:
             return math.hypot(x - self.goal[0], y - self.goal[1])
         d: float = self.cell_distance[index]
@@ -159,10 +231,8 @@ class CellDistanceToGoal:
 
     def _chain_start(self, x: float, y: float) -> int:
         """(x, y)'s cell, or -1 when it has no chain (outside, blocked, cut off)."""
-        if not (0.0 <= x < self.width and 0.0 <= y < self.height):
-            return -1
-        index = int(y) * self.width + int(x)
-        return -1 if self.cell_distance[index] == math.inf else index
+        index = self._closed_cell(x, y)
+        return -1 if index < 0 or self.cell_distance[index] == math.inf else index
 
     def _next_cell(self, index: int) -> int:
         """The cell after ``index`` on its chain (``index`` not the goal's)."""

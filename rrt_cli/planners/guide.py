@@ -15,7 +15,7 @@ import random
 from typing import Any, Optional
 
 from planning_core.heap import HeapEntry, heap_pop, heap_push
-from planning_core.interrupt import Stop
+from planning_core.interrupt import Interrupted, Stop
 from planning_core.samplers import uniform
 
 State = tuple[float, ...]
@@ -25,11 +25,18 @@ GUIDE_CELLS = 1
 
 class Guide:
     """The nodes not yet guided from, by their distance to the goal along the free
-    cells (``along``), and the share of iterations that take one."""
+    cells (``along``), and the share of iterations that take one.
+
+    A node waits under ``along.bound`` until it comes first; then it is measured
+    (``along`` is lazy: measuring may walk the map) and waits again under its
+    distance unless that still comes first. So only the nodes that come near the
+    front are measured, and the one drawn is the nearest by distance."""
 
     def __init__(self, along: Any, share: float, root: State) -> None:
         self.along, self.share = along, share
-        self.waiting: list[HeapEntry] = [HeapEntry(along(root[0], root[1]), 0)]
+        self.waiting: list[HeapEntry] = []
+        self.measured: set[int] = set()
+        self.add(0, root)
 
     @staticmethod
     def prepare(si: Any, share: float) -> None:
@@ -43,26 +50,41 @@ class Guide:
     def begin(si: Any, goal: Any, share: float, root: State,
               stop: Stop = None) -> Optional["Guide"]:
         """The guide of a tree that is ``root`` alone, or None without guided iterations
-        (a share of 0, or a world that measures no way: the family). Measuring is the
-        grid's Dijkstra, so it runs on the planning clock."""
+        (a share of 0, or a world that measures no way: the family). The grid's
+        Dijkstra runs lazily from the goal toward ``root``, on the planning clock."""
         if share <= 0.0:
             return None
-        along = si.distance_along_free_space(goal, stop)
+        along = si.distance_along_free_space(goal, stop, root)
         return None if along is None else Guide(along, share, root)
 
     def add(self, node: int, state: State) -> None:
-        heap_push(self.waiting, HeapEntry(self.along(state[0], state[1]), node))
+        heap_push(self.waiting, HeapEntry(self.along.bound(state[0], state[1]), node))
 
     def draw(self, rng: random.Random, states: list[State]) -> Optional[tuple[int, State]]:
         """This iteration's guided node and its target, when it is a guided one (one
         draw of ``rng``): the waiting node nearest the goal that has a way on. None when
-        it is not guided, or no node waits."""
+        it is not guided, or no node waits. When the time runs out while measuring,
+        None, and the guide guides no more."""
         if uniform(rng) >= self.share:
             return None
-        along, waiting = self.along, self.waiting
+        try:
+            return self._nearest(states)
+        except Interrupted:
+            self.share = 0.0
+            return None
+
+    def _nearest(self, states: list[State]) -> Optional[tuple[int, State]]:
+        along, waiting, measured = self.along, self.waiting, self.measured
         while waiting:
             node = heap_pop(waiting).order
-            ahead = along.ahead_of(states[node], GUIDE_CELLS)
+            state = states[node]
+            if node not in measured:
+                measured.add(node)
+                distance: float = along(state[0], state[1])
+                if waiting and distance > waiting[0].key:
+                    heap_push(waiting, HeapEntry(distance, node))
+                    continue
+            ahead = along.ahead_of(state, GUIDE_CELLS)
             if ahead is not None:
                 return node, ahead
         return None

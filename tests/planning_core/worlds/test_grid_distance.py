@@ -3,6 +3,9 @@
 import math
 import random
 
+import pytest
+
+from planning_core.interrupt import Interrupted
 from planning_core.problem_text import parse_problem
 from planning_core.worlds.grid import connected_free_cells
 from planning_core.worlds.grid_distance import CellDistanceToGoal
@@ -112,3 +115,65 @@ def test_ahead_is_that_many_cells_down_the_chain():
     assert distance.ahead(4.5, 0.5, len(chain) - 1) == WALLED.goal
     assert distance.ahead(4.5, 0.5, len(chain) + 5) == WALLED.goal
     assert distance.ahead(2.5, 2.5, 1) is None and distance.ahead(-1.0, 0.5, 1) is None
+
+
+def random_rows(rng, width, height, density):
+    rows = ["".join("#" if rng.random() < density else "_" for _ in range(width))
+            for _ in range(height)]
+    rows[-1] = "_" + rows[-1][1:]    # start cell (bottom-left) free
+    rows[0] = rows[0][:-1] + "_"     # goal cell (top-right) free
+    return rows
+
+
+def chain_is_free_and_joined(p, chain, goal_cell):
+    assert chain[-1] == goal_cell
+    for (c0, r0), (c1, r1) in zip(chain, chain[1:]):
+        assert max(abs(c1 - c0), abs(r1 - r0)) == 1
+        assert not p.is_blocked_cell(c1, r1)
+        assert not (p.is_blocked_cell(c1, r0) or p.is_blocked_cell(c0, r1))
+
+
+def test_a_lazy_field_measures_what_the_eager_one_does():
+    """With a focus the search is A* resumed per query: at every cell centre the same
+    distance (to the heuristic's tie weight), chains through free cells to the goal,
+    and the same cells cut off."""
+    rng = random.Random(8)
+    for _ in range(20):
+        p = problem(random_rows(rng, 12, 9, 0.3), (0.5, 0.5), (11.5, 8.5))
+        eager = CellDistanceToGoal(p, p.goal, unreachable=math.inf)
+        focus = (rng.uniform(0, 12), rng.uniform(0, 9))
+        lazy = CellDistanceToGoal(p, p.goal, unreachable=math.inf, focus=focus)
+        cells = [(c, r) for c in range(12) for r in range(9)]
+        rng.shuffle(cells)
+        for c, r in cells:
+            value, expected = lazy(c + 0.5, r + 0.5), eager(c + 0.5, r + 0.5)
+            assert value == expected or math.isclose(value, expected, rel_tol=1e-5)
+            assert lazy.bound(c + 0.5, r + 0.5) <= value
+            if math.isfinite(value):
+                chain_is_free_and_joined(p, lazy.chain_from(c + 0.5, r + 0.5), (11, 8))
+
+
+def test_a_lazy_field_walks_only_the_way_on_an_open_map():
+    """A 200 x 200 open map, the focus in the far corner: measuring there closes the
+    diagonal's cells, not the map's 40 000."""
+    p = problem(["_" * 200] * 200, (0.5, 0.5), (199.5, 199.5))
+    lazy = CellDistanceToGoal(p, p.goal, focus=p.start)
+    assert math.isclose(lazy(*p.start), 199 * math.sqrt(2), rel_tol=1e-5)
+    assert sum(lazy._closed) <= 400
+
+
+def test_a_lazy_field_asks_stop_while_it_measures():
+    """A query that walks more than POLL_EVERY cells asks ``stop``, and raises
+    Interrupted when it says so: a serpentine of 30 corridors 60 cells long."""
+    rows = ["_" * 60 if k % 2 == 0 else ("#" * 59 + "_" if k % 4 == 1 else "_" + "#" * 59)
+            for k in range(59)]
+    p = problem(rows, (0.5, 0.5), (0.5, 58.5))
+    asked = []
+    lazy = CellDistanceToGoal(p, p.goal, stop=lambda: asked.append(1) or True,
+                              focus=p.start)
+    assert not asked  # nothing measured before the first query
+    with pytest.raises(Interrupted):
+        lazy(*p.start)
+    assert asked
+    assert math.isclose(CellDistanceToGoal(p, p.goal, focus=p.start)(*p.start),
+                        CellDistanceToGoal(p, p.goal)(*p.start), rel_tol=1e-5)

@@ -7,6 +7,7 @@ keeps exactly what may still improve the answer; -seed reproduces bit for bit.""
 from __future__ import annotations
 
 import random
+import statistics
 import subprocess
 import sys
 
@@ -299,11 +300,11 @@ def test_ancestor_hops_hang_every_node_from_the_start_in_open_space(name):
         assert (from_start == {True}) == hops and (len(result.path) == 2) == hops
 
 
-def hop_runs(module, setup, pdef, stop):
+def hop_runs(module, setup, pdef, stop, seed=1):
     """Per ``ancestor_hops`` setting: iterations, the tree's nodes, the answer's cost."""
     runs = {}
     for hops in (True, False):
-        result = module.solve(setup.si, pdef, stop, random.Random(1),
+        result = module.solve(setup.si, pdef, stop, random.Random(seed),
                               module.Params(ancestor_hops=hops))
         runs[hops] = (result.stats.iterations, {edge[2] for edge in result.edges},
                       assert_valid(setup, result).cost)
@@ -317,16 +318,20 @@ HOP_PROBLEMS = ["space-3", "random-d20-20", "arm2-pair3"]
 @pytest.mark.parametrize("problem", HOP_PROBLEMS)
 def test_ancestor_hops_change_parents_only(name, problem):
     """The first solution comes at the same iteration through the same nodes, no
-    longer; RRT*'s uniform draws after it are the same too, and (seed 1, 1500
-    iterations) its answer is shorter."""
+    longer; RRT*'s uniform draws after it are the same too, and (1500 iterations) its
+    answer is shorter, the median over seeds 1-3 (a seed alone may lose by a hair)."""
     setup, module = setup_of(problem), MODULES[name]
     first = hop_runs(module, setup, setup.pdef, StopCondition(60))
     assert first[True][:2] == first[False][:2] and first[True][2] <= first[False][2]
     if name == "rrtstar":
-        runs = hop_runs(module, setup, optimizing(setup),
-                        StopCondition(60, max_iterations=1500))
-        assert runs[True][:2] == runs[False][:2]
-        assert runs[True][2] < runs[False][2], runs
+        costs = {True: [], False: []}
+        for seed in (1, 2, 3):
+            runs = hop_runs(module, setup, optimizing(setup),
+                            StopCondition(60, max_iterations=1500), seed)
+            assert runs[True][:2] == runs[False][:2]
+            for hops in costs:
+                costs[hops].append(runs[hops][2])
+        assert statistics.median(costs[True]) < statistics.median(costs[False]), costs
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
