@@ -25,6 +25,7 @@ from planning_core.dubins import mod2pi, sample_count, sample_positions
 from planning_core.interrupt import Stop
 from planning_core.samplers import uniform
 from planning_core.worlds.grid import SAMPLE_STEP, GridWorld
+from planning_core.worlds.grid_distance import RUN_CELLS, chain_step, straight_run_end
 
 TWO_PI = 2.0 * math.pi
 CURVES_KEPT = 4096
@@ -230,8 +231,6 @@ class PoseGuide:
     NUDGE = 1e-9
     """How far ahead along its heading a pose's cell is looked up, so that a pose on
     a cell's side belongs to the cell it is entering."""
-    RUN_CELLS = 64
-    """How far a target may lie down a straight run of the chain, in cells."""
 
     def __init__(self, cells: Any, goal: tuple[float, float]) -> None:
         self.cells = cells
@@ -248,12 +247,13 @@ class PoseGuide:
 
     def ahead_of(self, state: Sequence[float], steps: int) -> Optional[tuple[float, float, float]]:
         """The pose ``steps`` sides down the chain from ``state``'s cell, or further
-        while the chain goes straight on (at most ``RUN_CELLS`` cells); in the goal's
-        cell the goal; None without a chain, or at the goal."""
+        while the chain goes straight on (:func:`~planning_core.worlds.grid_distance.
+        straight_run_end`); in the goal's cell the goal; None without a chain, or at
+        the goal."""
         x, y = state[0], state[1]
         if len(state) > 2:
             x, y = x + self.NUDGE * math.cos(state[2]), y + self.NUDGE * math.sin(state[2])
-        chain = self.cells.chain_ahead(x, y, max(steps, self.RUN_CELLS))
+        chain = self.cells.chain_ahead(x, y, max(steps, RUN_CELLS))
         if chain is None:
             return None
         if len(chain) == 1:  # the goal's cell
@@ -261,18 +261,11 @@ class PoseGuide:
             if (gx, gy) == (state[0], state[1]):
                 return None
             return (gx, gy, mod2pi(math.atan2(gy - state[1], gx - state[0])))
-        end = min(steps, len(chain) - 1)
-        step = _step(chain, end)
-        while end + 1 < len(chain) and _step(chain, end + 1) == step:
-            end += 1
+        end = straight_run_end(chain, steps)
+        step = chain_step(chain, end)
         (before_col, before_row), (col, row) = chain[end - 1], chain[end]
         return (0.5 * (col + before_col) + 0.5, 0.5 * (row + before_row) + 0.5,
                 mod2pi(math.atan2(step[1], step[0])))
-
-
-def _step(chain: list[tuple[int, int]], k: int) -> tuple[int, int]:
-    """The step (columns, rows) from ``chain[k - 1]`` to ``chain[k]``."""
-    return (chain[k][0] - chain[k - 1][0], chain[k][1] - chain[k - 1][1])
 
 
 class PoseFrontier:

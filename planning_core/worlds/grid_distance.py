@@ -40,6 +40,27 @@ _TOWARD_X: Final = (0.0,) + tuple(-dc / cost for dc, _, cost in _STEPS)
 _TOWARD_Y: Final = (0.0,) + tuple(-dr / cost for _, dr, cost in _STEPS)
 
 
+RUN_CELLS: Final = 64
+"""How far a guided target may lie down a straight run of the chain, in cells."""
+
+
+def chain_step(chain: list[tuple[int, int]], k: int) -> tuple[int, int]:
+    """The step (columns, rows) from ``chain[k - 1]`` to ``chain[k]``."""
+    return (chain[k][0] - chain[k - 1][0], chain[k][1] - chain[k - 1][1])
+
+
+def straight_run_end(chain: list[tuple[int, int]], cells: int) -> int:
+    """The index ``cells`` steps down ``chain`` (its last at most), or further while
+    the chain goes on by the same step: a guided target at the end of a straight run
+    (a corridor's, an open map's diagonal) is reached in one extension."""
+    end = min(cells, len(chain) - 1)
+    if end > 0:
+        step = chain_step(chain, end)
+        while end + 1 < len(chain) and chain_step(chain, end + 1) == step:
+            end += 1
+    return end
+
+
 class CellDistanceToGoal:
     """Dijkstra from the goal's cell over the free cells; per cell a double (its
     distance), a byte (its way) and a byte (closed), 10 bytes a cell. ``stop`` is asked
@@ -180,21 +201,18 @@ class CellDistanceToGoal:
         way: int = self._way[index]
         return d - ((x - int(x) - 0.5) * _TOWARD_X[way] + (y - int(y) - 0.5) * _TOWARD_Y[way])
 
-    def ahead(self, x: float, y: float, cells: int) -> tuple[float, float] | None:
-        """The centre of the cell ``cells`` steps down the cheapest chain from (x, y)'s
-        cell (the goal itself when the chain ends sooner); None when (x, y) has no
-        chain. A walk of at most ``cells`` steps, whatever the chain's length."""
-        chain = self.chain_ahead(x, y, cells)
+    def ahead_of(self, state: Sequence[float], cells: int) -> tuple[float, float] | None:
+        """The centre of the cell ``cells`` steps down the cheapest chain from the
+        state's cell, or further while the chain goes straight on
+        (:func:`straight_run_end`); the goal itself when that is the goal's cell. None
+        when the state's cell has no chain (RRT*'s guided target)."""
+        chain = self.chain_ahead(state[0], state[1], max(cells, RUN_CELLS))
         if chain is None:
             return None
-        col, row = chain[-1]
+        col, row = chain[straight_run_end(chain, cells)]
         if row * self.width + col == self.goal_cell:
             return self.goal
         return (col + 0.5, row + 0.5)
-
-    def ahead_of(self, state: Sequence[float], cells: int) -> tuple[float, float] | None:
-        """:meth:`ahead` of a state's position (RRT*'s guided target)."""
-        return self.ahead(state[0], state[1], cells)
 
     def chain_ahead(self, x: float, y: float, cells: int) -> list[tuple[int, int]] | None:
         """The first ``cells + 1`` cells (column, row) of :meth:`chain_from`'s chain, or

@@ -1,9 +1,9 @@
 """Guided iterations: where the world measures the distance to the goal along its free
 cells (``si.distance_along_free_space``: the grid), a share of a tree's iterations, until
 its first solution, extends the node nearest the goal by that distance, each node once,
-toward a state ``GUIDE_CELLS`` cells further down the cheapest chain of cells (``ahead_of``:
-the point's next cell centre; the Dubins car's pose where the chain leaves a cell, at the
-end of its straight run). On a big map uniform targets fill the map before they reach a
+toward a state ``GUIDE_CELLS`` cells further down the cheapest chain of cells, or at the
+end of the chain's straight run (``ahead_of``: the point's cell centre; the Dubins car's
+pose where the chain leaves a cell). On a big map uniform targets fill the map before they reach a
 far goal; these walk the tree down the way. RRT* and Informed RRT* guide every system
 that has a way; RRT and RRT-Connect only where the space information asks
 (``rrt_guided_targets``: the Dubins car).
@@ -20,7 +20,7 @@ from planning_core.samplers import uniform
 
 State = tuple[float, ...]
 GUIDE_CELLS = 1
-"""How far down the free cells a guided target lies from its node, in cells."""
+"""How far down the free cells a guided target lies from its node at least, in cells."""
 
 
 class Guide:

@@ -105,16 +105,22 @@ def test_no_chain_from_a_blocked_cell_or_outside():
     assert distance.chain_from(-1.0, 0.5) is None
 
 
-def test_ahead_is_that_many_cells_down_the_chain():
-    """``ahead(x, y, k)``: the centre of the chain's k-th cell from (x, y)'s, the goal
-    itself when the chain is shorter; None where there is no chain."""
+def test_ahead_is_that_many_cells_down_the_chain_or_to_its_straight_runs_end():
+    """``ahead_of(state, k)``: the centre of the chain's k-th cell from the state's, or
+    of a later one while the chain goes straight on; the goal itself at the goal's
+    cell; None where there is no chain."""
     distance = CellDistanceToGoal(WALLED, WALLED.goal)
     chain = distance.chain_from(4.5, 0.5)
-    for k in range(len(chain) - 1):
-        assert distance.ahead(4.5, 0.5, k) == (chain[k][0] + 0.5, chain[k][1] + 0.5)
-    assert distance.ahead(4.5, 0.5, len(chain) - 1) == WALLED.goal
-    assert distance.ahead(4.5, 0.5, len(chain) + 5) == WALLED.goal
-    assert distance.ahead(2.5, 2.5, 1) is None and distance.ahead(-1.0, 0.5, 1) is None
+    steps = [(c1 - c0, r1 - r0) for (c0, r0), (c1, r1) in zip(chain, chain[1:])]
+    for k in range(1, len(chain)):
+        target = distance.ahead_of((4.5, 0.5), k)
+        end = len(chain) - 1 if target == WALLED.goal else \
+            chain.index((int(target[0]), int(target[1])))
+        assert target == WALLED.goal or target == (chain[end][0] + 0.5, chain[end][1] + 0.5)
+        assert end >= k and set(steps[k - 1:end]) == {steps[k - 1]}
+        assert end == len(chain) - 1 or steps[end] != steps[k - 1]
+    assert distance.ahead_of((4.5, 0.5), 1) == (2.5, 0.5)  # along row 0 to where it turns
+    assert distance.ahead_of((2.5, 2.5), 1) is None and distance.ahead_of((-1.0, 0.5), 1) is None
 
 
 def random_rows(rng, width, height, density):

@@ -7,7 +7,6 @@ keeps exactly what may still improve the answer; -seed reproduces bit for bit.""
 from __future__ import annotations
 
 import random
-import statistics
 import subprocess
 import sys
 
@@ -319,19 +318,18 @@ HOP_PROBLEMS = ["space-3", "random-d20-20", "arm2-pair3"]
 def test_ancestor_hops_change_parents_only(name, problem):
     """The first solution comes at the same iteration through the same nodes, no
     longer; RRT*'s uniform draws after it are the same too, and (1500 iterations) its
-    answer is shorter, the median over seeds 1-3 (a seed alone may lose by a hair)."""
+    answer is shorter for most of seeds 1-5 (a seed alone may lose by a hair)."""
     setup, module = setup_of(problem), MODULES[name]
     first = hop_runs(module, setup, setup.pdef, StopCondition(60))
     assert first[True][:2] == first[False][:2] and first[True][2] <= first[False][2]
     if name == "rrtstar":
-        costs = {True: [], False: []}
-        for seed in (1, 2, 3):
+        shorter = []
+        for seed in range(1, 6):
             runs = hop_runs(module, setup, optimizing(setup),
                             StopCondition(60, max_iterations=1500), seed)
             assert runs[True][:2] == runs[False][:2]
-            for hops in costs:
-                costs[hops].append(runs[hops][2])
-        assert statistics.median(costs[True]) < statistics.median(costs[False]), costs
+            shorter.append(runs[True][2] < runs[False][2])
+        assert sum(shorter) >= 3, shorter
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
