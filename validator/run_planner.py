@@ -592,10 +592,12 @@ class _Containment:
 
     def __init__(self, launched: int | None = None) -> None:
         """``launched``: the pid of a planner the launcher started (validator/launch.c):
-        our child already, we its subreaper since before it started, and every other
-        child of ours its descendant."""
+        our child already, we its subreaper since before it started (the attribute
+        outlives the exec into Python, and the process ends with the run, so it is
+        neither set nor cleared here: prctl is not even loaded), and every other child
+        of ours its descendant."""
         self.parent = os.getpid()
-        self.prctl = _load_prctl()
+        self.prctl = _load_prctl() if launched is None else None
         self.planner: int | None = None
         self.since = 0  # the planner's start time, in clock ticks since boot
         table = _proc_table() if launched is None else None
