@@ -14,9 +14,9 @@ check included: ``validator.checks.validate_plan``); its length is the validator
 the polyline through the printed points, which the course's validator measures too.
 
 Runs are appended to ``OUT/runs.csv`` as they finish, seeds in blocks of 10 over every
-map and setting, and a rerun keeps the runs stored there: an interrupted run goes on
-where it stopped, and the page made from what is stored says how many seeds each cell
-has. The page (``--page``) carries its date, commit and machine, as
+map and setting, and a rerun of the same code keeps the runs stored there
+(:func:`keep_runs_of_this_code`): an interrupted run goes on where it stopped, and the
+page made from what is stored says how many seeds each cell has. The page (``--page``) carries its date, commit and machine, as
 ``benchmarks/results_page.py``'s do.
 """
 
@@ -105,6 +105,22 @@ def stored(path: Path) -> list[dict]:
         return []
     with open(path, newline="") as handle:
         return list(csv.DictReader(handle))
+
+
+def keep_runs_of_this_code(out: Path) -> None:
+    """Keep ``out/runs.csv`` only when this code made it (``benchmarks.store``'s
+    fingerprint, kept in ``out/code``): a rerun resumes an interrupted run and never
+    mixes in the runs of other code; else they are dropped, with one line on stderr."""
+    from benchmarks.store import code_fingerprint
+    fingerprint = code_fingerprint(False)
+    runs, mark = out / "runs.csv", out / "code"
+    made_by = mark.read_text().strip() if mark.is_file() else None
+    if runs.is_file() and made_by != fingerprint:
+        print(f"course_report: the runs in {runs} were made by other code: all run again",
+              file=sys.stderr, flush=True)
+        runs.unlink()
+    out.mkdir(parents=True, exist_ok=True)
+    mark.write_text(fingerprint + "\n")
 
 
 def run_all(out: Path, seeds: int, budget: float, jobs: int) -> None:
@@ -257,7 +273,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("--seeds and --jobs take a positive integer, --budget a positive number")
     meta_path = args.out / "meta.json"
     if not args.page_only:
-        args.out.mkdir(parents=True, exist_ok=True)
+        keep_runs_of_this_code(args.out)
         started, clock = datetime.datetime.now(), time.monotonic()
         meta = script_meta(started, args.jobs,
                            "python -m benchmarks.course_report " + " ".join(argv))

@@ -44,3 +44,15 @@ def test_the_per_map_table_and_the_page():
     assert cells[-2] == f"{5.5 / 9.5:.2f}"
     text = page(rows, {"date": "D", "commit": "C"}, 1.0)
     assert "| date | D |" in text and "| commit | C |" in text and "Seeds 1 to 2" in text
+
+
+def test_a_rerun_keeps_the_stored_runs_only_of_the_same_code(tmp_path, capsys):
+    """An interrupted run resumes; runs another code made are dropped, with one line."""
+    runs = tmp_path / "runs.csv"
+    runs.write_text("map,vehicle\n")
+    (tmp_path / "code").write_text("another code\n")
+    course_report.keep_runs_of_this_code(tmp_path)
+    assert not runs.exists() and "made by other code" in capsys.readouterr().err
+    runs.write_text("map,vehicle\n")
+    course_report.keep_runs_of_this_code(tmp_path)  # the mark is this code's now
+    assert runs.exists() and capsys.readouterr().err == ""
