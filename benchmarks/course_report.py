@@ -16,8 +16,8 @@ the polyline through the printed points, which the course's validator measures t
 Runs are appended to ``OUT/runs.csv`` as they finish, seeds in blocks of 10 over every
 map and setting, and a rerun of the same code keeps the runs stored there
 (:func:`keep_runs_of_this_code`): an interrupted run goes on where it stopped, and the
-page made from what is stored says how many seeds each cell has. The page (``--page``) carries its date, commit and machine, as
-``benchmarks/results_page.py``'s do.
+page made from what is stored says how many seeds each cell has. The page (``--page``)
+carries its date, commit and machine, as ``benchmarks/results_page.py``'s do.
 """
 
 from __future__ import annotations

@@ -3,8 +3,8 @@ cells (``si.distance_along_free_space``: the grid), a share of a tree's iteratio
 its first solution, extends the node nearest the goal by that distance, each node once,
 toward a state ``GUIDE_CELLS`` cells further down the cheapest chain of cells, or at the
 end of the chain's straight run (``ahead_of``: the point's cell centre; the Dubins car's
-pose where the chain leaves a cell). On a big map uniform targets fill the map before they reach a
-far goal; these walk the tree down the way. RRT* and Informed RRT* guide every system
+pose where the chain leaves a cell). On a big map uniform targets fill the map before
+they reach a far goal; these walk the tree down the way. RRT* and Informed RRT* guide every system
 that has a way; RRT and RRT-Connect only where the space information asks
 (``rrt_guided_targets``: the Dubins car).
 """
