@@ -40,8 +40,17 @@ _TOWARD_X: Final = (0.0,) + tuple(-dc / cost for dc, _, cost in _STEPS)
 _TOWARD_Y: Final = (0.0,) + tuple(-dr / cost for _, dr, cost in _STEPS)
 
 
+FOCUS_TIE: Final = 1e-6
+"""The lazy search's heuristic weight above 1 (its tie-break; see CellDistanceToGoal)."""
 RUN_CELLS: Final = 64
 """How far a guided target may lie down a straight run of the chain, in cells."""
+
+
+def _weighted_octile(dx: int, dy: int) -> float:
+    """The lazy search's heuristic: the octile length of a step of (dx, dy) cells,
+    weighted by ``1 + FOCUS_TIE``."""
+    dx, dy = abs(dx), abs(dy)
+    return (max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)) * (1.0 + FOCUS_TIE)
 
 
 def chain_step(chain: list[tuple[int, int]], k: int) -> tuple[int, int]:
@@ -76,9 +85,6 @@ class CellDistanceToGoal:
     all tie) the one nearer the aim comes first. A closed cell's distance is then the
     least to within ``FOCUS_TIE`` relative; its chain, and so its value inside the
     cell, may differ from the eager search's where chains tie."""
-
-    FOCUS_TIE = 1e-6
-    """The lazy search's heuristic weight above 1 (its tie-break; see the class)."""
 
     def __init__(self, problem: Problem, goal: tuple[float, float], unreachable: float = 1e12,
                  stop: Stop = None, focus: tuple[float, float] | None = None):
@@ -141,7 +147,8 @@ class CellDistanceToGoal:
                 if reached < distance[k]:
                     distance[k] = reached
                     way[k] = code  # k's chain goes back through index
-                    key = reached + self._toward_focus(c, r) if lazy else reached
+                    key = reached + _weighted_octile(c - self._focus_col, r - self._focus_row) \
+                        if lazy else reached
                     heap_push(queue, HeapEntry(key, k))
             if index == until:
                 return
@@ -149,22 +156,27 @@ class CellDistanceToGoal:
     def _refocus(self, col: int, row: int) -> None:
         """Aim the lazy search at cell (col, row): the open cells' keys measured again
         toward it. Closed cells keep their distances (least whatever the heuristic,
-        A*'s own invariant), so each query walks from what is closed toward its cell."""
+        A*'s own invariant), so each query walks from what is closed toward its cell.
+        Asks ``stop`` as the search does; cut short, the search is as it was."""
         if (col, row) == (self._focus_col, self._focus_row):
             return
-        self._focus_col, self._focus_row = col, row
-        width, closed, distance = self.width, self._closed, self.cell_distance
-        open_cells = {entry.order for entry in self._queue if not closed[entry.order]}
-        self._queue = [HeapEntry(distance[k] + self._toward_focus(k % width, k // width), k)
-                       for k in open_cells]
-        heapify(self._queue)
-
-    def _toward_focus(self, col: int, row: int) -> float:
-        """The lazy search's heuristic: the octile distance from the cell to the
-        focus's, weighted by ``1 + FOCUS_TIE``."""
-        dx, dy = abs(col - self._focus_col), abs(row - self._focus_row)
-        octile = max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)
-        return octile * (1.0 + self.FOCUS_TIE)
+        width, closed, distance, stop = self.width, self._closed, self.cell_distance, self._stop
+        seen: set[int] = set()
+        queue: list[HeapEntry] = []
+        countdown = POLL_EVERY
+        for entry in self._queue:
+            countdown -= 1
+            if not countdown:
+                countdown = POLL_EVERY
+                check(stop)
+            k = entry.order
+            if closed[k] or k in seen:
+                continue
+            seen.add(k)
+            queue.append(HeapEntry(distance[k] + _weighted_octile(k % width - col,
+                                                                  k // width - row), k))
+        heapify(queue)
+        self._queue, self._focus_col, self._focus_row = queue, col, row
 
     def _closed_cell(self, x: float, y: float) -> int:
         """(x, y)'s cell, closed by the search when it is joined to the goal's; -1

@@ -183,3 +183,18 @@ def test_a_lazy_field_asks_stop_while_it_measures():
     assert asked
     assert math.isclose(CellDistanceToGoal(p, p.goal, focus=p.start)(*p.start),
                         CellDistanceToGoal(p, p.goal)(*p.start), rel_tol=1e-5)
+
+
+def test_turning_the_lazy_search_asks_stop_and_cut_short_changes_nothing():
+    """Aiming at a new cell measures every open cell's key again: that asks ``stop``
+    too, and when it is cut short the search keeps its queue and its aim."""
+    p = problem(["_" * 100] * 100, (0.5, 0.5), (99.5, 99.5))
+    stopped = []
+    lazy = CellDistanceToGoal(p, p.goal, stop=lambda: bool(stopped), focus=p.start)
+    lazy(*p.start)
+    lazy._queue = lazy._queue * 20  # more open entries than POLL_EVERY (duplicates allowed)
+    before = ([(e.key, e.order) for e in lazy._queue], lazy._focus_col, lazy._focus_row)
+    stopped.append(True)
+    with pytest.raises(Interrupted):
+        lazy(0.5, 99.5)
+    assert ([(e.key, e.order) for e in lazy._queue], lazy._focus_col, lazy._focus_row) == before
