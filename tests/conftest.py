@@ -16,7 +16,6 @@ COURSE_DIR = ROOT / "benchmarks" / "problems" / "course"
 COURSE_PROBLEMS = sorted(COURSE_DIR.glob("*.sw"))
 
 
-
 def script_code(name: str) -> str:
     """The Python code ``./run.sh`` or ``./rrt-validator`` (``name``) starts the
     interpreter with: its ``-c '...'`` argument, or the validator's ``code='...'``."""
@@ -24,6 +23,7 @@ def script_code(name: str) -> str:
     if "code='" in script:
         return script.split("code='", 1)[1].split("\n'\n", 1)[0]
     return script.split("-c '", 1)[1].split("\n' ", 1)[0]
+
 
 def run_planner(args: list[str], stdin: str, timeout: float = 120,
                 interpreted: bool = False) -> subprocess.CompletedProcess:

@@ -46,11 +46,15 @@ RUN_CELLS: Final = 64
 """How far a guided target may lie down a straight run of the chain, in cells."""
 
 
-def _weighted_octile(dx: int, dy: int) -> float:
-    """The lazy search's heuristic: the octile length of a step of (dx, dy) cells,
-    weighted by ``1 + FOCUS_TIE``."""
+def _octile(dx: int, dy: int) -> float:
+    """The length of the shortest 8-connected chain of (dx, dy) cells, ignoring walls."""
     dx, dy = abs(dx), abs(dy)
-    return (max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)) * (1.0 + FOCUS_TIE)
+    return max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)
+
+
+def _weighted_octile(dx: int, dy: int) -> float:
+    """The lazy search's heuristic: :func:`_octile` weighted by ``1 + FOCUS_TIE``."""
+    return _octile(dx, dy) * (1.0 + FOCUS_TIE)
 
 
 def chain_step(chain: list[tuple[int, int]], k: int) -> tuple[int, int]:
@@ -195,9 +199,8 @@ class CellDistanceToGoal:
         between the cells less the most a position moves inside its cell."""
         if not (0.0 <= x < self.width and 0.0 <= y < self.height):
             return self.unreachable
-        dx = abs(int(x) - self.goal_cell % self.width)
-        dy = abs(int(y) - self.goal_cell // self.width)
-        octile = max(dx, dy) + (_DIAGONAL - 1.0) * min(dx, dy)
+        octile = _octile(int(x) - self.goal_cell % self.width,
+                         int(y) - self.goal_cell // self.width)
         return octile * (1.0 - 1e-9) - _DIAGONAL / 2.0 - 1e-9
 
     def __call__(self, x: float, y: float) -> float:
