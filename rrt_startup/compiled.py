@@ -54,6 +54,7 @@ MODULES = (
     "rrt_cli.planners.base",
     "rrt_cli.planners.tree",
     "rrt_cli.planners.rrtconnect",
+    "rrt_cli.planners.sst",
 )
 """The compile list: hot modules whose source is annotated for mypyc."""
 

@@ -51,16 +51,27 @@ PENDULUM = (ROOT / "benchmarks" / "problems" / "family" / "pendulum-t3.kp").read
 
 
 @pytest.mark.parametrize("planner, problem", [
-    ("rrt", SMALL_CAR2), ("rgrrt", PENDULUM),
+    ("rrt", SMALL_CAR2), ("rgrrt", PENDULUM), ("sst", PENDULUM),
     pytest.param("kpiece", SMALL_CAR2, marks=pytest.mark.slow),
     pytest.param("rgrrt", SMALL_CAR2, marks=pytest.mark.slow),
     pytest.param("blossom", SMALL_CAR2, marks=pytest.mark.slow),
+    pytest.param("sst", SMALL_CAR2, marks=pytest.mark.slow),
     pytest.param("rrt", PENDULUM, marks=pytest.mark.slow)])
 def test_a_compiled_family_run_prints_the_interpreted_bytes(planner, problem):
     args = ["-planner", planner, "-seed", "2"]
     fast = run_planner_compiled(args, problem)
     assert fast.returncode == 0, fast.stderr
-    slow = run_planner(args, problem)
+    slow = run_planner(args, problem, interpreted=True)
     assert fast.stdout == slow.stdout
     report = validate_plan(kinoplan_setup(parse_kinoplan(problem)), fast.stdout.decode())
     assert report.valid, report.first_failure
+
+
+@pytest.mark.parametrize("flags", [["-grad"], ["-grad", "-left"]], ids=["grad", "left"])
+def test_a_compiled_ship_sst_run_prints_the_interpreted_bytes(flags):
+    """The golden tests pin no SST run: a ship's, compiled and interpreted."""
+    problem = (ROOT / "benchmarks" / "problems" / "course" / "space-3.sw").read_text()
+    args = [*flags, "-planner", "sst", "-seed", "3"]
+    fast = run_planner_compiled(args, problem)
+    assert fast.returncode == 0, fast.stderr
+    assert fast.stdout == run_planner(args, problem, interpreted=True).stdout
