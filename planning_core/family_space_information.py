@@ -137,7 +137,8 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         self.advance = fused.advance
         self.propagate_valid = fused.propagate_valid
         self.sample_control = system.sample_control
-        # KPIECE1's random motion (samplers.MotionSampler: the draws, then the slices).
+        # KPIECE1's and SST's random motion (samplers.MotionSampler: the draws, then
+        # the slices).
         self.random_motion = MotionSampler(system.control_sampler, fused.advance).sample
 
     def propagate_valid(self, state: Sequence[float], control: Any) -> Optional[State]:
@@ -184,11 +185,12 @@ class FamilyControlSpaceInformation(FamilySpaceInformation):
         """The motion's duration: K (the control's last value) slices of dt."""
         return control[-1] * self.system.dt
 
-    def random_motion(self, state: Sequence[float],
-                      rng: random.Random) -> Optional[tuple[Any, list[State]]]:
+    def random_motion(self, state: Sequence[float], rng: random.Random,
+                      whole: bool = False) -> Optional[tuple[Any, list[State]]]:
         """Random held values and K (in that order), cut at the first invalid slice:
         the control with the slices done as its K, and its end; None under KMIN
-        (each instance shadows this with ``samplers.MotionSampler.sample``)."""
+        (``whole``: under K; each instance shadows this with
+        ``samplers.MotionSampler.sample``)."""
         raise NotImplementedError
 
     def projection(self) -> Any:

@@ -305,11 +305,12 @@ class GridControlSpaceInformation:
         its steps, the length of the polyline through its printed positions)."""
         return math.hypot(a[0] - b[0], a[1] - b[1])
 
-    def random_motion(self, state: tuple[float, ...],
-                      rng: random.Random) -> Optional[tuple[Any, list]]:
+    def random_motion(self, state: tuple[float, ...], rng: random.Random,
+                      whole: bool = False) -> Optional[tuple[Any, list]]:
         """A random control held for ``min_steps`` to ``max_steps`` steps (drawn in
         that order), stopped before the first invalid step: the control and each
-        step's state; None when fewer than ``min_steps`` were valid."""
+        step's state; None when fewer than ``min_steps`` were valid (``whole``: than
+        the steps drawn)."""
         options = self.options
         control = self.sample_control(rng)
         wanted = randint(rng, options.min_steps, options.max_steps)
@@ -321,7 +322,8 @@ class GridControlSpaceInformation:
                 break
             steps.append(end)
             at = end
-        return (control, steps) if len(steps) >= options.min_steps else None
+        return (control, steps) if len(steps) >= (wanted if whole else options.min_steps) \
+            else None
 
     def projection(self) -> Any:
         """KPIECE1's cells: the position in cells of ``cell_size`` (and the velocity

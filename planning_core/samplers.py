@@ -85,19 +85,20 @@ class ControlSampler:
 
 
 class MotionSampler:
-    """KPIECE1's random motion on a family system (OMPL's propagateWhileValid):
-    held values from ``controls``' box and a K in ``[kmin, kmax]`` (``rng``: the
-    values, then K), applied by ``advance`` (the generated slice loop's) up to the
-    first invalid slice; ``((*values, k), [end])`` with ``k`` the slices done, or
-    None when fewer than KMIN were valid."""
+    """A random motion on a family system (OMPL's propagateWhileValid): held values
+    from ``controls``' box and a K in ``[kmin, kmax]`` (``rng``: the values, then K),
+    applied by ``advance`` (the generated slice loop's) up to the first invalid slice;
+    ``((*values, k), [end])`` with ``k`` the slices done, or None when fewer than KMIN
+    (``whole``: than K) were valid."""
 
     def __init__(self, controls: ControlSampler, advance: Any) -> None:
         self.controls = controls
         self.advance = advance
 
-    def sample(self, state: Any, rng: Any) -> tuple | None:
+    def sample(self, state: Any, rng: Any, whole: bool = False) -> tuple | None:
         controls = self.controls
         values = controls.values.sample(rng)
-        end, k = self.advance(state, values, randint(rng, controls.kmin, controls.kmax))
-        return (values + (k,), [end]) if k >= controls.kmin else None
+        wanted = randint(rng, controls.kmin, controls.kmax)
+        end, k = self.advance(state, values, wanted)
+        return (values + (k,), [end]) if k >= (wanted if whole else controls.kmin) else None
 

@@ -213,11 +213,12 @@ class ControlSpaceInformation(Protocol):
     def propagate_valid(self, state: Sequence[float], control: Any) -> Optional[State]:
         """Where ``control`` leads from ``state`` if every slice is valid, else None."""
 
-    def random_motion(self, state: Sequence[float],
-                      rng: random.Random) -> Optional[tuple[Any, list[State]]]:
+    def random_motion(self, state: Sequence[float], rng: random.Random,
+                      whole: bool = False) -> Optional[tuple[Any, list[State]]]:
         """A random control held for a random duration, cut at the first invalid
         slice: the control and the states of the nodes it makes (the grid: one per
-        step; the family: one); None when it is shorter than the least duration."""
+        step; the family: one); None when it is shorter than the least duration, or,
+        with ``whole``, than the duration drawn (OMPL's SST keeps no cut motion)."""
 
     def projection(self) -> Callable[[Sequence[float]], tuple[int, ...]]:
         """State -> its cell in KPIECE1's grid over a projection of the state."""

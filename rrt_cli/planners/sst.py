@@ -26,8 +26,6 @@ Departures from OMPL's ``control::SST`` (read for the algorithm, not copied):
   RG-RRT's guide: without steering, targets pull the tree toward the goal only in a
   straight line, which in a maze is the wrong corridor, and a random control seldom
   brakes, which the left-only ship needs to turn right in a corridor);
-- a random motion cut short by an invalid slice is kept, up to its last valid slice
-  (OMPL drops it);
 - on the grid's ships, whose output holds one control per step, a motion of ``k``
   steps is ``k`` chained nodes, each judged against its witness in turn (the chain
   ends at the first that is not the cheapest there);
@@ -84,6 +82,10 @@ class SSTParams:
     """A guided node is extended by every control of the reachable set held one step
     (RG-RRT's: coasting and full thrust at evenly spaced angles, braking included), not
     by one random motion: a best-first search among the guided nodes."""
+    whole_motions: bool = True
+    """A random motion is kept only when every slice of its drawn duration is valid,
+    as OMPL's SST keeps it. False: kept up to its last valid slice (KPIECE1's rule;
+    docs/optimal-planning.md compares them)."""
     refine_by_distance: bool = True
     """After the first solution, select by ``si.distance`` (the ships: the position; the
     cost is the path's length, so the cheapest node near a place is the one to extend)
@@ -110,6 +112,7 @@ class _Search:
                  rng: random.Random, params: SSTParams, stop: Stop = None):
         self.si, self.rng, self.goal, self.goal_bias = si, rng, pdef.goal, params.goal_bias
         self.refine_by_distance = params.refine_by_distance
+        self.whole_motions = params.whole_motions
         self.by_distance = False
         """:attr:`nodes` is ordered by ``si.distance`` (from the first iteration after
         the first solution, with ``refine_by_distance``)."""
@@ -181,7 +184,8 @@ class _Search:
                 return self.expand(node)
         if node < 0:
             node = self.select(self.target())
-        return self.extend(node, si.random_motion(self.tree.states[node], rng))
+        return self.extend(node, si.random_motion(self.tree.states[node], rng,
+                                                  self.whole_motions))
 
     def expand(self, node: int) -> Optional[int]:
         """Every control of the reachable set held one step from ``node``; the first

@@ -330,3 +330,31 @@ def test_the_left_only_ship_takes_the_50_cell_maze():
     solved = [_solved_and_valid(setup, sst.SSTParams(guided_reach=reach), range(1, 4), 6000)
               for reach in (True, False)]
     assert solved == [3, 0], solved
+
+
+@pytest.mark.parametrize("name, vehicle", [("car2-corridors", None),
+                                           ("gap-wall", Vehicle.SPACESHIP)])
+def test_a_whole_motion_is_the_random_motion_when_no_slice_is_cut_else_none(name, vehicle):
+    """``whole_motions`` (OMPL's rule): from the same draws, ``random_motion(whole=True)``
+    is the cut-at-the-first-invalid-slice motion when it lasts the duration drawn, and
+    None when it was cut short."""
+    text = MAPS[name] if vehicle else (FAMILY / f"{name}.kp").read_text()
+    setup = _setup(text, vehicle)
+    si = setup.si
+    grown = sst.solve(si, setup.pdef, StopCondition(max_iterations=300), random.Random(1),
+                      sst.SSTParams(whole_motions=False))
+    kinds = set()
+    for k, (_, _, state) in enumerate(grown.edges[:150]):
+        for seed in range(k * 8, k * 8 + 8):
+            cut = si.random_motion(state, random.Random(seed))
+            draws = random.Random(seed)
+            control = si.sample_control(draws)
+            if vehicle is None:
+                drawn, done = control[-1], None if cut is None else cut[0][-1]
+            else:
+                drawn = draws.randint(si.options.min_steps, si.options.max_steps)
+                done = None if cut is None else len(cut[1])
+            whole = done == drawn
+            kinds.add(whole)
+            assert si.random_motion(state, random.Random(seed), True) == (cut if whole else None)
+    assert kinds == {True, False}
