@@ -24,12 +24,11 @@ from planning_core.plan_text import PlanParseError
 
 _SPACE = "[ \t\r\f\v]"
 _NUMBER = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
-_NUMBER_RE = re.compile(_NUMBER)
 # The same numbers, possessive (no backtracking) and with at most 300 digits before
 # the point, so that a number matched here overflows a double only by its exponent.
 _FAST_NUMBER = r"[+-]?+(?:[0-9]{1,300}+(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][+-]?+[0-9]++)?+"
-_NON_FINITE_RE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
-_TOKEN_RE = re.compile(r"[^ \t\r\f\v]+")
+_NON_FINITE = r"(?i)[+-]?(?:nan|inf|infinity)"
+_TOKEN = r"[^ \t\r\f\v]+"
 _BLANK_LINES = re.compile(r"(?:[ \t\r\f\v]*\n)*+")
 _BLANK_REST = re.compile(r"[ \t\r\f\v]*")
 _COUNT_LINE = re.compile(r"[ \t\r\f\v]*([0-9]+)[ \t\r\f\v]*(?:\n|\Z)")
@@ -115,7 +114,8 @@ def row_error(line: str, fields: int, what: str) -> tuple[str, int | None] | Non
 
     Returns the message and the number of tokens found (None: too many to count).
     """
-    tokens = [m.group() for m in islice(_TOKEN_RE.finditer(line), _SHOWN_TOKENS + 1)]
+    # (Compiled here, from re's cache after the first time: only a bad answer needs them.)
+    tokens = [m.group() for m in islice(re.finditer(_TOKEN, line), _SHOWN_TOKENS + 1)]
     if len(tokens) != fields:
         if len(tokens) > _SHOWN_TOKENS:
             return (f"expected {fields} numbers on a {what} line, got more than "
@@ -124,9 +124,9 @@ def row_error(line: str, fields: int, what: str) -> tuple[str, int | None] | Non
         return f"expected {fields} numbers on a {what} line, got {len(tokens)}: {shown}", \
             len(tokens)
     for token in tokens:
-        if _NON_FINITE_RE.fullmatch(token):
+        if re.fullmatch(_NON_FINITE, token):
             return f"{_show(token)} is not a finite number", fields
-        if not _NUMBER_RE.fullmatch(token):
+        if not re.fullmatch(_NUMBER, token):
             return f"{_show(token)} is not a number", fields
         if not math.isfinite(float(token)):
             return f"{_show(token)} is not a finite number (too large for a double)", fields

@@ -450,16 +450,17 @@ class _Validation:
         cut_count = 0
         for index in range(n - 1):
             x0, y0, x1, y1 = values[2 * index:2 * index + 4]
+            hit = world.first_sampled_collision(x0, y0, x1, y1, SAMPLE_STEP)
+            exact = None if hit is not None else world.first_blocked_cell_on_segment(
+                x0, y0, x1, y1)
+            if hit is None and exact is None:
+                continue  # (most segments: nothing to say, so no message is formatted)
             line = self.line_of(index)
             segment = (f"segment from line {line} {_point(x0, y0)} to line {line + 1} "
                        f"{_point(x1, y1)}")
-            hit = world.first_sampled_collision(x0, y0, x1, y1, SAMPLE_STEP)
             if hit is not None:
                 raise self.fail("collision", POINT_COLLISION, f"{segment}: the sample at "
                                 f"{_place(problem, *hit)}", line, hit)
-            exact = world.first_blocked_cell_on_segment(x0, y0, x1, y1)
-            if exact is None:
-                continue
             where = (x0 + (x1 - x0) * exact.fraction, y0 + (y1 - y0) * exact.fraction)
             cut = (f"{segment} cuts the corner of blocked cell ({exact.column}, {exact.row}) "
                    f"between the {SAMPLE_STEP}-unit samples")

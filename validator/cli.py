@@ -296,13 +296,15 @@ def _check_picture_path(parser, path: str) -> None:
         parser.error(f"-o {path!r}: cannot write the {FORMATS[extension]} there ({why})")
 
 
-def _validate(run: PlannerRun, setup, strict: bool
+def _validate(run: PlannerRun, setup, strict: bool, drawn: bool
               ) -> tuple[ValidationReport | None, int, str]:
-    """The report (None when the planner did not run to the end), status, verdict."""
-    from validator.checks import INVALID_VERDICT, validate_plan
+    """The report (None when the planner did not run to the end), status, verdict.
+    Not ``drawn`` (-noviz), the tree's rows are checked and counted, not kept."""
+    from validator.checks import INVALID_VERDICT, Limits, validate_plan
     if not run.ran_to_completion:
         return None, EXIT_PLANNER_FAILED, INVALID_VERDICT
-    report = validate_plan(setup, decode_output(run.output), strict=strict,
+    limits = Limits() if drawn else Limits(max_tree_rows_kept=0)
+    report = validate_plan(setup, decode_output(run.output), strict=strict, limits=limits,
                            output_cap_exceeded=run.output_cap if run.output_cap_exceeded
                            else None)
     return report, EXIT_VALID if report.valid else EXIT_INVALID, report.verdict
@@ -398,7 +400,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     run, setup = _run(command, problem_bytes, args.timeout,
                       lambda: _setup(problem, vehicle, args))
     messages = solver_messages(run)
-    report, status, verdict = _validate(run, setup, args.strict)
+    report, status, verdict = _validate(run, setup, args.strict, not args.noviz)
 
     pdf = None
     if not args.noviz:

@@ -88,6 +88,22 @@ def test_tree_rows_past_the_limit_are_counted_not_kept():
     assert error.value.line == 4  # the first tree row
 
 
+def test_with_no_tree_row_kept_every_row_is_still_judged():
+    """The validator's -noviz keeps no tree row: each one is still read and checked."""
+    rows = [(1.0, 1.0, 2.0, 2.0)] * 20_000
+    text = format_plan([(1.0, 1.0)], rows)
+    plan = read_plan(text, 2, 4, max_tree_rows_kept=0)
+    assert plan.tree_count == 20_000 and plan.tree_rows_kept == 0
+    lines = text.split("\n")
+    for bad, message in (("1.0 1.0 2.0 1e400", "finite"), ("1.0 1.0 2.0", ""),
+                         ("1.0 1.0 2.0 nan", "")):
+        broken = lines.copy()
+        broken[3 + 15_000] = bad  # tree row 15000, past the first blocks
+        with pytest.raises(PlanParseError) as error:
+            read_plan("\n".join(broken), 2, 4, max_tree_rows_kept=0)
+        assert error.value.line == 3 + 15_000 + 1 and message in error.value.message
+
+
 def test_trajectory_count_over_the_limit_is_refused_before_reading():
     text = format_plan([(1.0, 1.0)] * 30, [])
     with pytest.raises(PlanParseError) as error:
