@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 import re
 from array import array
-from dataclasses import dataclass
 from itertools import islice
 from collections.abc import Iterator
 
@@ -46,18 +45,22 @@ class PlanRowError(PlanParseError):
         self.found = found
 
 
-@dataclass(frozen=True)
 class PlanArrays:
-    """A parsed plan: rows stored flat, ``fields`` numbers per row."""
+    """A parsed plan: rows stored flat, ``fields`` numbers per row. A plain class, not
+    a dataclass: the validator reads it in while the planner runs, and defining a
+    dataclass costs about half a millisecond (docs/setup-and-startup.md)."""
 
-    trajectory_fields: int
-    tree_fields: int
-    trajectory: array        # trajectory_count * trajectory_fields doubles
-    tree: array              # the first tree_rows_kept rows of the tree
-    tree_count: int          # rows in the output (may exceed the rows kept)
-    trajectory_first_line: int
-    tree_first_line: int
-    trailing_line: int | None = None  # first non-blank line after the tree
+    def __init__(self, trajectory_fields: int, tree_fields: int, trajectory: array,
+                 tree: array, tree_count: int, trajectory_first_line: int,
+                 tree_first_line: int, trailing_line: int | None = None) -> None:
+        self.trajectory_fields = trajectory_fields
+        self.tree_fields = tree_fields
+        self.trajectory = trajectory  # trajectory_count * trajectory_fields doubles
+        self.tree = tree              # the first tree_rows_kept rows of the tree
+        self.tree_count = tree_count  # rows in the output (may exceed the rows kept)
+        self.trajectory_first_line = trajectory_first_line
+        self.tree_first_line = tree_first_line
+        self.trailing_line = trailing_line  # first non-blank line after the tree
 
     @property
     def trajectory_count(self) -> int:

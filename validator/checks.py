@@ -16,7 +16,6 @@ it happens (for the PDF).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from planning_core.costs import path_cost
 from planning_core.goal import GOAL_TOLERANCE
@@ -96,12 +95,13 @@ CHECKS = (
 CHECK_NUMBERS = {check.name: number for number, check in enumerate(CHECKS, 1)}
 
 
-@dataclass(frozen=True)
 class Limits:
     """Bounds that keep validation time and memory finite on hostile output.
 
     Far beyond any honest answer: the course maps need tens of lines, a 500 x 500
-    map a few thousand.
+    map a few thousand. Keyword arguments override the defaults; an instance does
+    not change. A plain class, not a frozen dataclass: the validator imports it while
+    the planner runs, and defining a dataclass costs about half a millisecond.
     """
 
     max_trajectory_lines: int = 1_000_000
@@ -124,6 +124,21 @@ class Limits:
     proportion, as a validity test there looks at more."""
     max_warnings_listed: int = 20
     """Corner-cut warnings listed one by one; the rest are summed up in one line."""
+
+    def __init__(self, **overrides: float) -> None:
+        for name, value in overrides.items():
+            if name not in _LIMIT_NAMES:
+                raise TypeError(f"Limits has no {name!r}")
+            object.__setattr__(self, name, value)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"a Limits does not change (setting {name!r})")
+
+    def __repr__(self) -> str:
+        return f"Limits({', '.join(f'{k}={v!r}' for k, v in vars(self).items())})"
+
+
+_LIMIT_NAMES = frozenset(Limits.__annotations__)
 
 
 class CheckResult:

@@ -179,3 +179,14 @@ def test_the_costliest_answer_at_the_cap_is_judged_within_30_cpu_seconds(tmp_pat
                                        *python_planner(AT_THE_CAP)], HUGGING, tmp_path)
     assert done.returncode == 0, done.stdout.decode()[-500:]
     assert cpu < 30
+
+
+def test_limits_take_known_overrides_and_do_not_change():
+    limits = Limits(max_slices=100, line_cost=2)
+    assert (limits.max_slices, limits.line_cost) == (100, 2)
+    assert limits.world_vertices == Limits().world_vertices == 64
+    with pytest.raises(TypeError, match="max_slice"):
+        Limits(max_slice=100)
+    with pytest.raises(AttributeError):
+        limits.max_slices = 5
+    assert repr(limits) == "Limits(max_slices=100, line_cost=2)"
