@@ -22,7 +22,6 @@ carries its date, commit and machine, as ``benchmarks/results_page.py``'s do.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import json
 import datetime
