@@ -47,8 +47,8 @@ class PlanRowError(PlanParseError):
 
 class PlanArrays:
     """A parsed plan: rows stored flat, ``fields`` numbers per row. A plain class, not
-    a dataclass: the validator imports it while the planner runs, and defining a
-    dataclass costs about 0.4 ms (docs/setup-and-startup.md)."""
+    a dataclass: the validator imports it while the planner runs, where defining a
+    dataclass is start-up time that shows (docs/setup-and-startup.md)."""
 
     def __init__(self, trajectory_fields: int, tree_fields: int, trajectory: array,
                  tree: array, tree_count: int, trajectory_first_line: int,

@@ -101,7 +101,8 @@ class Limits:
     Far beyond any honest answer: the course maps need tens of lines, a 500 x 500
     map a few thousand. Keyword arguments override the defaults; an instance does
     not change. A plain class, not a frozen dataclass: the validator imports it while
-    the planner runs, and defining a dataclass costs about 0.4 ms.
+    the planner runs, where defining a dataclass is start-up time that shows
+    (docs/setup-and-startup.md).
     """
 
     max_trajectory_lines: int = 1_000_000
